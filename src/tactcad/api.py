@@ -358,9 +358,11 @@ class Project:
 
         Args:
             out: an export folder. It is checked as it is when its manifest
-                names this design and every file has its listed sha256;
-                otherwise the design is exported there first. ``None``: a
-                temporary folder, removed afterwards.
+                names this design (:func:`tactcad.export.reuse.export_state`): a
+                file changed or removed by hand since is left as it is, one failing
+                check of the ``export files`` group; otherwise (another design, no
+                export) the design is exported there first. ``None``: a temporary
+                folder, removed afterwards.
             scenes: check only these scenes (interference, sanity, STEP and
                 GLB read-back); ``None`` checks the array and every scene.
             cache: the store of finished jobs, as for :meth:`export`; it keeps
@@ -383,7 +385,7 @@ class Project:
         import tempfile
 
         from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
-        from tactcad.export.reuse import reuse_refusal
+        from tactcad.export.reuse import reuse_state
         from tactcad.export.run import export, export_scenes
         from tactcad.export.selection import with_progress
         from tactcad.store import keeping_results
@@ -405,23 +407,33 @@ class Project:
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
-                refusal = reuse_refusal(self.plan, folder)
+                state = reuse_state(self.plan, folder)
+                refusal, edited = state.refusal, state.edited
                 if refusal is None:
-                    report(f"checking the export in {folder} (same design, every file as listed)")
+                    report(f"checking the export in {folder} as it is ({_edits_said(edited)})")
                 elif scenes:
                     report(f"exporting the scenes to {folder} first: {refusal}")
                     export_scenes(self.validated, folder, scenes, log=_quiet, store=_store(cache),
                                   parts=self._cache)
+                    edited = None  # the manifest is left as it was: its files not compared
                 else:
                     report(f"exporting to {folder} first: {refusal}")
                     export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
-                run_groups([g for g in to_run if g.on_export], replace(context, folder=folder),
-                           done)
+                run_groups([g for g in to_run if g.on_export],
+                           replace(context, folder=folder, edited=edited), done)
         finally:
             self._report = _quiet
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
                            refusal, None if out is None else str(out))
+
+
+def _edits_said(edited: Mapping[str, str]) -> str:
+    """What a check says of an export's hand edits as it starts reading it."""
+    if not edited:
+        return "same design, every file as listed"
+    return (f"same design; {len(edited)} file(s) changed or removed by hand since the export, "
+            "left as they are and failing the export files check")
 
 
 def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProject":
@@ -568,9 +580,11 @@ class DieProject:
         (:func:`tactcad.commands.die.die_check`).
 
         Args:
-            out: an export folder. It is checked as it is when it holds the export the
-                design writes now; otherwise the die is exported there first. ``None``: a
-                temporary folder, removed afterwards.
+            out: an export folder. It is checked as it is when it holds an export of this
+                design, as an array's (:func:`tactcad.export.reuse.export_state`): a file
+                changed or removed by hand since is left as it is, one failing check;
+                otherwise the die is exported there first. ``None``: a temporary folder,
+                removed afterwards.
             progress: told whether the export was reused or written first.
 
         Returns:

@@ -31,6 +31,8 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
         with open(tmp_path, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp_path, target)
+        if not any(".staging-" in part for part in target.parent.parts):  # a published file
+            note_changed(target)
     except OSError as exc:  # name the file being written, not its temporary name
         if exc.filename not in (None, str(tmp_path)) or exc.errno is None:
             raise  # a write() error names no file: it is this one
@@ -149,24 +151,165 @@ def write_failed(path: str | Path, what: str) -> OSError:
     return disk_full_error(path) or OSError(errno.EIO, f"{what} failed", str(path))
 
 
-def remove_tree(path: Path) -> list[str]:
-    """Remove the folder ``path``; the paths that could not be removed (a
-    read-only leftover, another user's files), which the caller reports."""
-    stuck: list[str] = []
-    shutil.rmtree(path, onerror=lambda fn, p, exc: stuck.append(p))
-    return stuck if path.exists() else []
+#: The system's reasons a removal fails, in words (errno -> words); others are its own.
+_REMOVAL_WORDS = {errno.EACCES: "permission denied", errno.EPERM: "permission denied",
+                  errno.EROFS: "a read-only file system", errno.EBUSY: "in use"}
 
 
-def warn_left_behind(paths: list[str]) -> None:
-    """One warning naming what could not be removed (nothing when all went)."""
-    if paths:
+def reason_in_words(exc: BaseException | None) -> str:
+    """Why an operation on a path failed, in words (``permission denied``).
+
+    Args:
+        exc: the error raised (None: the reason is not known).
+
+    Returns:
+        The words, from the error's errno where it has one.
+    """
+    if not isinstance(exc, OSError):
+        return "cause not known" if exc is None else type(exc).__name__
+    return _REMOVAL_WORDS.get(exc.errno, (exc.strerror or type(exc).__name__).lower())
+
+
+def remove_tree(path: Path) -> list[tuple[str, str]]:
+    """Remove the folder ``path``.
+
+    Args:
+        path: the folder to remove with all it holds.
+
+    Returns:
+        What could not be removed (a read-only leftover, another user's files), each as
+        (path, why in words: :func:`reason_in_words`), which the caller reports; empty when
+        the folder is gone.
+    """
+    stuck: list[tuple[str, str]] = []
+
+    def failed(fn, failed_path, exc_info) -> None:
+        stuck.append((str(failed_path), reason_in_words(exc_info[1] if exc_info else None)))
+
+    shutil.rmtree(path, onerror=failed)
+    if not path.exists():
+        return []
+    if str(path) not in {p for p, _ in stuck}:  # the folder itself is left: it is named first
+        stuck.insert(0, (str(path), "directory not empty"))
+    return stuck
+
+
+def folder_bytes(path: Path) -> int:
+    """Bytes of the files under ``path`` that can be seen (unreadable folders count 0)."""
+    total = 0
+    for root, _, names in os.walk(path):
+        for name in names:
+            with contextlib.suppress(OSError):
+                total += os.lstat(os.path.join(root, name)).st_size
+    return total
+
+
+def _outermost(stuck: list[tuple[str, str]]) -> list[str]:
+    """The paths of ``stuck`` inside no other path of it (a folder, not all it holds)."""
+    listed = dict.fromkeys(p for p, _ in stuck)
+    return [p for p in listed if not any(str(a) in listed for a in Path(p).parents)]
+
+
+def _reasons(stuck: list[tuple[str, str]]) -> str:
+    """The distinct reasons of ``stuck``; "directory not empty", which follows from the
+    others, only when it is the one."""
+    words = list(dict.fromkeys(w for _, w in stuck))
+    return ", ".join([w for w in words if w != "directory not empty"] or words)
+
+
+def _sized(path: str) -> str:
+    """``path``, with its size in MB for a folder."""
+    return f"{path} ({folder_bytes(Path(path)) / 1e6:.1f} MB)" if os.path.isdir(path) else path
+
+
+def warn_left_behind(stuck: list[tuple[str, str]]) -> None:
+    """One warning naming what could not be removed (the outermost paths, a folder's size)
+    and why; nothing when all went.
+
+    Args:
+        stuck: (path, why in words) as :func:`remove_tree` returns them.
+    """
+    if stuck:
         import warnings
 
         from tactcad.errors import LeftoverWarning
 
-        shown = ", ".join(paths[:5]) + (f" and {len(paths) - 5} more" if len(paths) > 5 else "")
+        paths = _outermost(stuck)
+        shown = ", ".join(map(_sized, paths[:5])) + (f" and {len(paths) - 5} more"
+                                                     if len(paths) > 5 else "")
         warnings.warn(f"could not remove {len(paths)} leftover path(s) of an earlier or failed "
-                      f"run: {shown}; remove them by hand", LeftoverWarning, stacklevel=2)
+                      f"run ({_reasons(stuck)}): {shown}; remove them as a user who may",
+                      LeftoverWarning, stacklevel=2)
+
+
+def warn_old_export_left(old: Path, target: Path, stuck: list[tuple[str, str]]) -> None:
+    """One warning for an export folder replaced but not removed: the new export in
+    ``target`` is whole, the old one stays hidden beside it as ``old`` (a leftover
+    :func:`leftover_staging` finds, so the next run that may remove it does).
+
+    Args:
+        old: the hidden folder now holding the old export.
+        target: the export folder (holding the new export).
+        stuck: (path, why in words) as :func:`remove_tree` returns them; nothing is said
+            when empty.
+    """
+    if not stuck:
+        return
+    import warnings
+
+    from tactcad.errors import LeftoverWarning
+
+    size = folder_bytes(old) / 1e6
+    warnings.warn(f"the old export replaced in {target} could not be removed "
+                  f"({_reasons(stuck)}: {stuck[0][0]}); it is kept as {old} ({size:.1f} MB). "
+                  f"The new export is whole. Remove it as a user who may (rm -rf {old}); the "
+                  f"next export into {target} by such a user removes it", LeftoverWarning,
+                  stacklevel=2)
+
+
+def unremovable_tree(folder: Path) -> str | None:
+    """Why the files in ``folder`` cannot all be removed by this user, in words (the first
+    folder that takes no removal, and why), or None when they can as far as the system's
+    permissions tell (a folder must be writable and searchable to lose its entries).
+
+    Args:
+        folder: an existing folder (an export about to be replaced).
+
+    Returns:
+        ``<folder>: permission denied`` (or ``a read-only file system``), or None.
+    """
+    for root, _, _ in os.walk(folder, onerror=lambda exc: None):
+        if not os.access(root, os.W_OK | os.X_OK):
+            read_only = bool(os.statvfs(root).f_flag & os.ST_RDONLY)
+            return f"{root}: {'a read-only file system' if read_only else 'permission denied'}"
+    return None
+
+
+#: Paths this process changed (a folder replaced whole, a file written in place), for the
+#: line an interrupt ends with (:func:`changed_paths`).
+_CHANGED: list[str] = []
+
+
+def note_changed(path: str | Path) -> None:
+    """Record that this run has changed ``path`` (a folder replaced, a file written), so an
+    interrupt's line says so instead of "the previous files are left as they were".
+
+    Args:
+        path: the folder or file, as the user named it or absolute.
+    """
+    if str(path) not in _CHANGED:
+        _CHANGED.append(str(path))
+
+
+def forget_changed() -> None:
+    """Start a new run's record of :func:`note_changed` (a command run in this process)."""
+    _CHANGED.clear()
+
+
+def changed_paths() -> list[str]:
+    """The paths :func:`note_changed` recorded in this process that are still there (a
+    temporary folder removed since is not), in order."""
+    return [p for p in _CHANGED if os.path.lexists(p)]
 
 
 def remove_partial_files(folder: Path) -> None:
@@ -289,11 +432,21 @@ def in_target(exc: OSError, staging: Path, target: Path) -> OSError:
 
 
 def leftover_staging(target: Path) -> list[Path]:
-    """Staging folders of ``target`` that a killed run left behind."""
+    """Folders beside ``target`` that an earlier run left behind: a killed run's staging
+    folder, or an old export replaced but not removed (``.<target>.staging-*`` after a
+    swap, ``.<target>.old-*`` after a rename aside).
+
+    Args:
+        target: the export folder.
+
+    Returns:
+        Those folders, sorted (none when ``target``'s parent is missing).
+    """
     if not target.parent.is_dir():
         return []
-    return sorted(p for p in target.parent.glob(f".{glob.escape(target.name)}.staging-*")
-                  if p.is_dir() and not p.is_symlink())
+    name = glob.escape(target.name)
+    found = [*target.parent.glob(f".{name}.staging-*"), *target.parent.glob(f".{name}.old-*")]
+    return sorted(p for p in found if p.is_dir() and not p.is_symlink())
 
 
 def carry_over(old: Path, new: Path, keep: Callable[[str], bool]) -> list[str]:
@@ -321,14 +474,20 @@ def publish_dir(staging: Path, target: Path) -> None:
     either the whole old folder or the whole new one; the old one is then
     removed. Elsewhere the old folder is renamed aside first (a killed run
     can then leave ``target`` missing for an instant, the old set beside it).
+    The old folder that cannot be removed (another user's files) stays beside ``target``
+    under a hidden name, said in one warning (:func:`warn_old_export_left`); the next run
+    that may remove it does (:func:`leftover_staging`).
     """
     if not target.exists():
         os.rename(staging, target)
+        note_changed(target)
         return
     if _exchange(staging, target):
-        warn_left_behind(remove_tree(staging))
+        note_changed(target)
+        warn_old_export_left(staging, target, remove_tree(staging))
         return
     aside = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
     os.rename(target, aside / "old")
     os.rename(staging, target)
-    warn_left_behind(remove_tree(aside))
+    note_changed(target)
+    warn_old_export_left(aside, target, remove_tree(aside))

@@ -239,9 +239,11 @@ def run_command(argv: list[str] | None) -> int:
     import contextlib
     import io
 
+    from tactcad.atomic import forget_changed
     from tactcad.commands.notices import WarningLines, json_with_warnings, print_heads
 
     argv = sys.argv[1:] if argv is None else list(argv)
+    forget_changed()  # what this run writes, for the line an interrupt ends with
     as_json, quiet = "--json" in argv, "--quiet" in argv
     # a stream of JSON lines goes out as it happens; its warnings go to stderr
     streams = as_json and streams_json_lines(argv)
@@ -362,14 +364,26 @@ def report_interrupt(exc: KeyboardInterrupt, as_json: bool, command: str | None 
         return 0
     if isinstance(exc, Terminated):
         code = 128 + exc.signum
-        message = (f"terminated by {signal.Signals(exc.signum).name}; the previous files are "
-                   "left as they were")
+        message = f"terminated by {signal.Signals(exc.signum).name}; {files_left_said()}"
     else:
-        code, message = EXIT_INTERRUPTED, "interrupted; the previous files are left as they were"
+        code, message = EXIT_INTERRUPTED, f"interrupted; {files_left_said()}"
     if as_json:
         return report_error(error_record(exc, code, message), as_json)
     print(f"tactcad: {message}", file=sys.stderr)
     return code
+
+
+def files_left_said() -> str:
+    """What an interrupted run left, in words: the previous files as they were, or, once it
+    has written something in place (:func:`tactcad.atomic.changed_paths`, e.g. ``check``'s
+    export before its checks), what it wrote."""
+    from tactcad.atomic import changed_paths
+
+    written = changed_paths()
+    if not written:
+        return "the previous files are left as they were"
+    shown = ", ".join(written[:3]) + (f" and {len(written) - 3} more" if len(written) > 3 else "")
+    return f"this run had already written {shown} before it; the other files are left as they were"
 
 
 def end_like_ctrl_c() -> None:

@@ -42,7 +42,8 @@ def test_registering_a_taken_name_or_an_unknown_suite_rule_is_refused(with_dummy
 def test_the_groups_run_in_order_and_scenes_keep_the_design_only_groups(with_dummy):
     assert [g.name for g in groups_to_run()][-1] == "tip marks"
     only_scenes = [g.name for g in groups_to_run(["array"])]
-    assert only_scenes == ["requirements", "hard stops", "rigs", "process", "grasper", "scenes"]
+    assert only_scenes == ["requirements", "hard stops", "rigs", "process", "grasper",
+                           "export files", "scenes"]
     without_project = [g.name for g in groups_to_run(project=False)]
     assert "scenes" not in without_project and "tip marks" in without_project
 
@@ -67,8 +68,8 @@ def test_a_registered_group_runs_in_check(with_dummy, exported):
     out, _ = exported
     report = tactcad.load().check(out, cache=False)
     labels = [label for label, _ in report.groups]
-    assert labels[:7] == ["requirements", "rigs", "process", "parts", "dxf", "array interference",
-                          "array STEP"]
+    assert labels[:8] == ["requirements", "rigs", "process", "export files", "parts", "dxf",
+                          "array interference", "array STEP"]
     assert labels[-1] == "tip marks" and any(label.startswith("scene ") for label in labels)
     marks = dict(report.groups)["tip marks"]
     assert [r.subject for r in marks if not r.passed] == ["element_3"]

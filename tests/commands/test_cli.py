@@ -9,6 +9,7 @@ import re
 import shutil
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -287,6 +288,40 @@ def test_a_job_reading_left_out_files_gets_its_own_key():
     assert full["drawings:pdf"].key == "key-drawings:pdf"  # every page it reads is there
 
 
+def test_part_cuts_a_job_of_many_parts_down_to_the_parts_own_files():
+    """A job of many parts that can write one part's files alone (the shop DXF's
+    profiles) stands, with --part, for one such job per named part it has files of."""
+    own = {"cart": _job("dxf:cart")}
+    jobs = [j if j.name != "dxf:shop" else replace(j, for_part=own.get) for j in JOBS]
+    names = [j.name for j in select_jobs(jobs, ["dxf"], ["cart"])]
+    assert names == ["dxf:cart"]
+    names = [j.name for j in select_jobs(jobs, [], ["cart", "element_a4mm"])]
+    assert names == ["step:element_a4mm", "step:cart", "dxf:cart", "drawing:element_a4mm",
+                     "drawing:cart"]
+    assert [j.name for j in select_jobs(jobs, ["dxf"])] == ["dxf:shop"]  # no --part: whole
+    with pytest.raises(DesignError) as err:
+        select_jobs(jobs, ["dxf"], ["element_a4mm"])  # no profile of its own: nothing left
+    assert "DXF profile" in str(err.value) and "not the nested sheets" in str(err.value)
+
+
+def test_export_part_writes_the_parts_own_dxf_profile_as_a_full_export_does(tmp_path):
+    from tactcad.export.dxf_sheet import shop_profiles, write_shop_dxf_files
+
+    plan = tactcad.load().plan
+    profile = shop_profiles(plan)[0]
+    out = tmp_path / "ex"
+    assert cli.main(["export", "--no-cache", "--quiet", "--out", str(out), "--only", "dxf",
+                     "--part", profile.part]) == 0
+    whole = tmp_path / "whole"
+    write_shop_dxf_files(plan, whole, lambda line: None)
+    written = sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file())
+    assert written == sorted([profile.file_name, "manifest.json"])  # no nested sheet
+    assert (out / profile.file_name).read_bytes() == (whole / profile.file_name).read_bytes()
+    man = json.loads((out / "manifest.json").read_text())
+    assert man["partial"]["jobs"] == [f"dxf:{profile.part}"]
+    assert [f["kind"] for f in man["files"]] == ["dxf-profile"]
+
+
 def test_bad_selections_name_the_allowed_values():
     with pytest.raises(DesignError) as err:
         parse_only(["step,stp"])
@@ -323,7 +358,7 @@ def test_partial_export_manifest_lists_only_what_was_written(tmp_path):
 
 # --- check reuses the export it checks ---------------------------------------------------------
 @pytest.mark.slow
-def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path, default_store):
+def test_check_reuses_a_current_export_and_leaves_a_hand_edit(tmp_path, default_store):
     out, store = tmp_path / "out", warm_store_copy(default_store, tmp_path / "store")
     assert run_cli("export", "--out", str(out), "--cache", str(store), "--quiet").returncode == 0
     proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store),
@@ -341,35 +376,13 @@ def test_check_reuses_a_current_export_and_refuses_a_changed_one(tmp_path, defau
 
     with open(out / "scenes" / "wirecut.glb", "ab") as fh:
         fh.write(b"\0")
+    edited = (out / "scenes" / "wirecut.glb").read_bytes()
     proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store))
-    assert proc.returncode == 0
-    assert "scenes/wirecut.glb changed since the export" in proc.stderr
-    assert re.search(r"^scene wirecut: \d+ passed, 0 failed", proc.stderr, re.M)
-    assert re.search(r"^PASS  glb_readback\s+scenes/wirecut.glb", proc.stdout, re.M)
-
-
-def test_reuse_refusal_reasons(tmp_path):
-    from tactcad import __version__
-    from tactcad.design.array_plan import load_design
-    from tactcad.export.reuse import file_sha256, reuse_refusal
-    from tactcad.store import stack_versions
-
-    plan = load_design()
-    assert "no manifest.json" in reuse_refusal(plan, tmp_path)
-    (tmp_path / "a.txt").write_text("a")
-    man = {"design": {"sha256": plan.design_hash}, "tactcad_version": __version__,
-           "cad_stack": stack_versions(),
-           "files": [{"path": "a.txt", "sha256": file_sha256(tmp_path / "a.txt")}]}
-    (tmp_path / "manifest.json").write_text(json.dumps(man))
-    assert reuse_refusal(plan, tmp_path) is None
-    (tmp_path / "a.txt").write_text("b")
-    assert reuse_refusal(plan, tmp_path) == "a.txt changed since the export"
-    (tmp_path / "a.txt").unlink()
-    assert reuse_refusal(plan, tmp_path) == "a.txt missing"
-    (tmp_path / "manifest.json").write_text(json.dumps({**man, "partial": {}}))
-    assert "partial" in reuse_refusal(plan, tmp_path)
-    (tmp_path / "manifest.json").write_text(json.dumps({**man, "cad_stack": {}}))
-    assert "CAD stack" in reuse_refusal(plan, tmp_path)
+    assert proc.returncode == 1  # a hand edit is left as it is and fails
+    assert "1 file(s) changed or removed by hand since the export" in proc.stderr
+    assert re.search(r"^FAIL  export_file\s+scenes/wirecut.glb\s+edited since the export",
+                     proc.stdout, re.M)
+    assert (out / "scenes" / "wirecut.glb").read_bytes() == edited
 
 
 # --- ./tactcad -----------------------------------------------------------------------------------

@@ -122,30 +122,38 @@ def test_a_dies_export_has_its_review_page_and_manifest_and_checks(die_folder):
 
 
 @pytest.mark.slow
-def test_a_dies_check_exports_again_what_changed_since_the_export(die_folder):
-    """As an array's check: a file whose sha256 is not the manifest's is exported again
-    first, said in one line, then checked (a cut-short GDS is no traceback)."""
+def test_a_dies_check_leaves_hand_edits_as_they_are_and_fails_them(die_folder):
+    """As an array's check: a file changed or removed by hand since the export is never
+    written over; each fails the export_file check and the rest is checked as it is (a
+    cut-short GDS is no traceback). A changed design is exported again, said in one line."""
     assert run_cli("export", "--out", "exports", "--quiet", cwd=die_folder).returncode == 0
     out = die_folder / "exports"
     gds = out / "grasper_jaw_5mm_mems.gds"
-    whole = gds.read_bytes()
     with open(gds, "r+b") as fh:
         fh.truncate(100)
-    c = run_cli("check", "--out", "exports", cwd=die_folder)
-    assert c.returncode == 0, c.stdout + c.stderr
-    assert "exporting to exports first: grasper_jaw_5mm_mems.gds changed since the export" \
-        in c.stderr
-    assert gds.read_bytes() == whole  # exported again, as it was
+    cut = gds.read_bytes()
     with open(out / "grasper_jaw_5mm_mems_traveller.md", "a", encoding="utf-8") as fh:
         fh.write("a step of our own\n")
-    c = run_cli("check", "--out", "exports", cwd=die_folder)
-    assert c.returncode == 0 and "grasper_jaw_5mm_mems_traveller.md changed since the " \
-        "export" in c.stderr, c.stderr
-    c = run_cli("check", "--out", "exports", cwd=die_folder)  # now as listed: taken as it is
-    assert c.returncode == 0 and "checking the export in exports (same design" in c.stderr
-    assert "exporting" not in c.stderr
-    report = json.loads(run_cli("check", "--out", "exports", "--json", cwd=die_folder).stdout)
+    traveller = (out / "grasper_jaw_5mm_mems_traveller.md").read_bytes()
+    c = run_cli("check", "--out", "exports", "--json", cwd=die_folder)
+    assert c.returncode == 1, c.stdout + c.stderr
+    report = json.loads(c.stdout)
     assert report["reused_export"] and report["export_refusal"] is None
+    edited = {x["subject"]: x["detail"] for x in report["checks"]
+              if x["check"] == "export_file" and x["status"] == "fail"}
+    assert set(edited) == {"grasper_jaw_5mm_mems.gds", "grasper_jaw_5mm_mems_traveller.md"}
+    assert all(d.startswith("edited since the export: sha256 differs from manifest.json")
+               and "`tactcad export --out exports` writes it again" in d for d in edited.values())
+    assert gds.read_bytes() == cut  # left as the hand left it
+    assert (out / "grasper_jaw_5mm_mems_traveller.md").read_bytes() == traveller
+
+    assert run_cli("export", "--out", "exports", "--quiet", cwd=die_folder).returncode == 0
+    c = run_cli("check", "--out", "exports", cwd=die_folder)  # now as listed: taken as it is
+    assert c.returncode == 0 and "checking the export in exports as it is (same design" \
+        in c.stderr, c.stderr
+    assert "exporting" not in c.stderr
+    c = run_cli("check", "--out", "exports", "--set", "die.columns=4", cwd=die_folder)
+    assert "exporting to exports first: made from another design" in c.stderr, c.stderr
 
 
 def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):

@@ -16,7 +16,7 @@ import importlib
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Mapping, Sequence
 
 if TYPE_CHECKING:
     from tactcad.checks.check_result import CheckResult
@@ -38,6 +38,9 @@ class CheckContext:
         project: the validated design (:class:`tactcad.design.project.Project`),
             which the scene groups need; None checks the array alone.
         scenes: the scenes asked for (``--scene``), or None for all.
+        edited: the files of the export changed (``changed``) or removed (``missing``)
+            by hand since it was written, by path (:func:`tactcad.export.reuse.export_state`;
+            empty for an export the check wrote), or None when not looked at.
     """
 
     plan: Any
@@ -45,6 +48,7 @@ class CheckContext:
     cache: Any
     project: Any = None
     scenes: Sequence[str] | None = None
+    edited: Mapping[str, str] | None = None
 
 
 @dataclass(frozen=True)
@@ -63,6 +67,8 @@ class CheckGroup:
         on_export: False for a group that reads the design alone (it runs
             before any export is written and also with ``--scene``).
         per_scene: True when it runs on the scenes (alone with ``--scene``).
+        with_scenes: True for a group on the export that runs with ``--scene`` too (it
+            reads the export as a whole, whichever scenes are checked).
     """
 
     name: str
@@ -72,6 +78,7 @@ class CheckGroup:
     suite: str = "group"
     on_export: bool = True
     per_scene: bool = False
+    with_scenes: bool = False
 
     def run(self, context: CheckContext) -> Iterator[Found]:
         """Run the group's checks, yielding each label's results as they finish."""
@@ -126,11 +133,11 @@ def group_of(label: str) -> CheckGroup:
 
 def groups_to_run(scenes: Sequence[str] | None = None, project: bool = True,
                   on_export: bool = True) -> list[CheckGroup]:
-    """The groups a check runs, in order: all; with ``scenes`` the design's own
-    and the scenes'; without a ``project`` none of the scenes'; with
+    """The groups a check runs, in order: all; with ``scenes`` the design's own,
+    those that run with scenes and the scenes'; without a ``project`` none of the scenes'; with
     ``on_export=False`` none of those that read an export's files."""
     return [g for g in CHECK_GROUPS.values()
-            if (not scenes or g.per_scene or not g.on_export)
+            if (not scenes or g.per_scene or g.with_scenes or not g.on_export)
             and (project or not g.per_scene) and (on_export or not g.on_export)]
 
 
@@ -165,6 +172,10 @@ for _group in (
         CheckGroup("grasper", "the insert's envelope inside the grasper jaw's pocket and its "
                    "leads through the shaft's lead channel (kernel-free, before any export)",
                    "tactcad.checks.grasper_fit", "grasper_group", on_export=False),
+        CheckGroup("export files", "every file the manifest lists as the export wrote it "
+                   "(sha256): a file changed or removed by hand since fails and is left as it "
+                   "is, never written over by the check", "tactcad.checks.export_files",
+                   "export_files_group", with_scenes=True),
         CheckGroup("parts", "each part's solid: valid, volume, bounding box; its STEP "
                    "file read back", _CHECKS, "part_group", suite="part"),
         CheckGroup("dxf", "each shop DXF read back: closed contours, the process's cutting "

@@ -17,15 +17,21 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("check", help="run part, DXF, STEP and interference checks",
                        description="Check the export of the design and exit 1 if any check "
                                    "fails. With --out DIR holding an export of the same design "
-                                   "(manifest design sha256 and every file's sha256 matching) "
-                                   "those files are checked as they are; otherwise the design "
-                                   "is exported there (or to a temporary folder) first, reusing "
+                                   "(the manifest's design sha256 matching) its files are "
+                                   "checked as they are; a file changed or removed by hand "
+                                   "since (sha256 not as the manifest lists) is never written "
+                                   "over: it fails the export files check, and `tactcad export "
+                                   "--out DIR` writes it again. Only when DIR holds no export, "
+                                   "another design's, or (nothing edited) a partial one or one "
+                                   "of another tactcad version, is the design exported there "
+                                   "(or to a temporary folder without --out) first, reusing "
                                    "the store of finished jobs. Each group's results are printed "
                                    "as it finishes. The groups, in order: " + groups_help() + ".")
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", default=None,
-                   help="the export to check (exported here first unless it is the design's "
-                        "current one); default: a temporary folder")
+                   help="the export to check (exported here first unless it holds an export "
+                        "of the design; files edited by hand are never written over); default: "
+                        "a temporary folder")
     p.add_argument("--failures-only", action="store_true",
                    help="print failing and undecided checks only")
     p.add_argument("--scene", metavar="NAME", action="append", default=None,

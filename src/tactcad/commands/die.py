@@ -13,7 +13,7 @@ import os
 import shutil
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 from tactcad.commands import add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.finite_json import dumps
@@ -23,6 +23,9 @@ from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAU
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 from tactcad.errors import DesignError, DesignErrors
+
+if TYPE_CHECKING:
+    from tactcad.export.reuse import ExportState
 
 #: The written files, by what they hold ({name}: the die's name).
 DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}.step",
@@ -291,7 +294,7 @@ def with_attach(plan, attach):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.atomic import staging_dir, writing_lock
+    from tactcad.atomic import note_changed, staging_dir, writing_lock
     from tactcad.checks.check_result import counts_text, status_counts
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
@@ -376,6 +379,7 @@ def run(args: argparse.Namespace) -> int:
         _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
                                    mount, getattr(args, "design", None))
         out.mkdir(parents=True, exist_ok=True)
+        note_changed(out)  # from here an interrupt leaves some files new: it says so
         for k in sorted(made, key=lambda k: k == "manifest"):  # the manifest last
             files[k].parent.mkdir(parents=True, exist_ok=True)
             os.replace(made[k], files[k])
@@ -618,7 +622,7 @@ def die_check(design: Path, args: argparse.Namespace,
               report: Callable[[str], None]) -> DieCheck:
     """A die's export in ``args.out`` (exported there first, said in one line to ``report``,
     unless the export is the one the design writes now, as an array's check decides it:
-    :func:`_die_export_refusal`; a temporary folder without ``--out``) read back: the
+    :func:`_die_export_state`; a temporary folder without ``--out``) read back: the
     masks against the process's rules and the plan, the mount's solids, the drawing, and the
     record's plan against the design's; the results written to the export's review page and
     to ``args.junit`` where given.
@@ -638,6 +642,7 @@ def die_check(design: Path, args: argparse.Namespace,
     import tempfile
 
     from tactcad.checks.check_result import CheckResult, status_counts
+    from tactcad.checks.export_files import edited_results
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
     from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
@@ -654,9 +659,12 @@ def die_check(design: Path, args: argparse.Namespace,
     with tempfile.TemporaryDirectory(prefix="tactcad-die-check-") as temp:
         out = Path(args.out) if args.out else Path(temp)
         files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
-        refusal = _die_export_refusal(out, planned, files["record"])
-        if refusal is None:
-            report(f"checking the export in {out} (same design, every file as listed)")
+        state = _die_export_state(out, planned, files["record"])
+        refusal = state.refusal
+        if refusal is None:  # hand edits are left as they are, each a failing check
+            report(f"checking the export in {out} as it is"
+                   + (f" ({len(state.edited)} file(s) changed or removed by hand since)"
+                      if state.edited else " (same design, every file as listed)"))
         else:  # as an array's check does: exported there first, said in one line
             report(f"exporting to {out} first: {refusal}")
             quiet = argparse.Namespace(**{**vars(args), "json": True})
@@ -669,6 +677,7 @@ def die_check(design: Path, args: argparse.Namespace,
         checks = die_requirement_checks(plan, mount) + [CheckResult("die_files", str(out), not missing,
                               f"missing: {', '.join(missing)}" if missing
                               else f"{len(files)} files of {name}")]
+        checks += edited_results(out, state.edited)  # the array's rule: one for every product
         if not missing:
             same = record.get("die") == json_module.loads(dumps(plan.as_json()))
             checks.append(CheckResult("die_record", files["record"].name, same,
@@ -692,22 +701,24 @@ def die_check(design: Path, args: argparse.Namespace,
         return DieCheck(name, str(out), refusal, tuple(checks), counts)
 
 
-def _die_export_refusal(out: Path, planned: PlannedDie, record: Path) -> str | None:
-    """Why the die's export in ``out`` is not the one its design writes now (the array's
-    rule, :func:`tactcad.export.reuse.export_refusal`: the manifest's design file sha256 and
-    ``--set`` values, versions, every listed file's sha256), or None when it is; a record
-    of another plan (a jaw file changed since) is refused too."""
+def _die_export_state(out: Path, planned: PlannedDie, record: Path) -> "ExportState":
+    """What the die's check finds in ``out``, by the array's rule
+    (:func:`tactcad.export.reuse.export_state`: the manifest's design file sha256 and
+    ``--set`` values, versions, every listed file's sha256; files changed by hand in an
+    export of the same design are left as they are and listed); a record of another plan
+    (a jaw file changed since) is exported again, unless the record itself was edited."""
     import json as json_module
 
-    from tactcad.export.reuse import export_refusal
+    from tactcad.export.reuse import ExportState, export_state
 
     source = planned.source or {}
-    refusal = export_refusal(out, {"sha256": source.get("sha256"),
-                                   "overrides": source.get("overrides", {})})
-    if refusal is None and (_record_of(record) or {}).get("die") != \
+    state = export_state(out, {"sha256": source.get("sha256"),
+                               "overrides": source.get("overrides", {})})
+    if state.refusal is None and record.relative_to(out).as_posix() not in state.edited \
+            and (_record_of(record) or {}).get("die") != \
             json_module.loads(dumps(planned.plan.as_json())):
-        return f"{record.name} holds another plan than the design makes"
-    return refusal
+        return ExportState(f"{record.name} holds another plan than the design makes")
+    return state
 
 
 def refuse_a_foreign_folder(out: Path, name: str) -> None:

@@ -31,8 +31,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         + "; the manifest lists only what was written and says so under "
                           "\"partial\" (default: every kind)")
     p.add_argument("--part", metavar="NAME", action="append", default=None,
-                   help="write only this part's own files, its STEP and its drawing "
-                        "(repeatable; combines with --only)")
+                   help="write only this part's own files: its STEP, its drawing and, for "
+                        "a part cut from sheet, its DXF profile dxf/<part>_qty<n>.dxf, not the "
+                        "nested sheet (which holds every part cut from it) (repeatable; "
+                        "combines with --only, e.g. --only dxf --part NAME for the wire-EDM "
+                        "shop)")
     add_cache_args(p)
     add_output_args(p, "print a JSON summary (seconds, jobs run and reused, builds, files)")
     p.add_argument("--dxf-version", choices=("R2010", "R12"), default=None,

@@ -541,17 +541,11 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
     Raises:
         DesignError: ``version`` is not ``R2010`` or ``R12``.
     """
-    version = version or dxf_version_option()
-    if version not in DXF_VERSIONS:
-        raise DesignError("--dxf-version", version, " or ".join(DXF_VERSIONS))
+    version = _checked_version(version)
     records: list[dict] = []
     for (material, t), group in sheets(plan).items():
         for sp in group:
-            write_shop_profile(staging / sp.file_name, plan, sp, version)
-            records.append({"path": sp.file_name, "part": sp.part, "kind": "dxf-profile",
-                            "quantity": sp.quantity, "marks": list(sp.copy_marks),
-                            "material": material, "thickness_mm": t, "dxf_version": version,
-                            "process": sp.process})
+            records.append(_write_profile_file(plan, staging, sp, material, version))
         rel = sheet_dxf_name(material, t)
         gap = sheet_gap_mm(plan)
         grades = ", ".join(dict.fromkeys(sp.designation or sp.material for sp in group))
@@ -568,6 +562,50 @@ def write_shop_dxf_files(plan: Plan, staging: Path, log: Callable[[str], None],
                         "dxf_version": version, "process": group[0].process})
     log(f"  wrote {len(records)} DXF files in dxf/ ({version})")
     return records
+
+
+def write_part_dxf_files(plan: Plan, staging: Path, part: str, log: Callable[[str], None],
+                         version: str | None = None) -> list[dict]:
+    """Write ``part``'s own profile DXF files into ``staging/dxf`` (``dxf/<part>_qty<n>.dxf``,
+    as :func:`write_shop_dxf_files` writes them), without the nested sheets: a sheet nests
+    every part cut from it, so it is no one part's file (``tactcad export --part``).
+
+    Args:
+        plan: the array's plan.
+        staging: the folder the files go in.
+        part: a part cut from sheet (:func:`shop_profiles`).
+        log: told what was written.
+        version: ``R2010`` or ``R12`` (None: :func:`dxf_version_option`).
+
+    Returns:
+        One ``dxf-profile`` record per file, as :func:`write_shop_dxf_files` gives.
+
+    Raises:
+        DesignError: ``version`` is not ``R2010`` or ``R12``.
+    """
+    version = _checked_version(version)
+    records = [_write_profile_file(plan, staging, sp, material, version)
+               for (material, _), group in sheets(plan).items() for sp in group
+               if sp.part == part]
+    log(f"  wrote {len(records)} DXF file(s) of {part} in dxf/ ({version})")
+    return records
+
+
+def _checked_version(version: str | None) -> str:
+    """``version``, or :func:`dxf_version_option` when None; refused unless a known one."""
+    version = version or dxf_version_option()
+    if version not in DXF_VERSIONS:
+        raise DesignError("--dxf-version", version, " or ".join(DXF_VERSIONS))
+    return version
+
+
+def _write_profile_file(plan: Plan, staging: Path, sp: ShopProfile, material: str,
+                        version: str) -> dict:
+    """Write one profile's shop file into ``staging``; its ``dxf-profile`` record."""
+    write_shop_profile(staging / sp.file_name, plan, sp, version)
+    return {"path": sp.file_name, "part": sp.part, "kind": "dxf-profile",
+            "quantity": sp.quantity, "marks": list(sp.copy_marks), "material": material,
+            "thickness_mm": sp.thickness_mm, "dxf_version": version, "process": sp.process}
 
 
 def shop_section(plan: Plan) -> dict:

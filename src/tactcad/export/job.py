@@ -89,6 +89,10 @@ class Job:
     #: work of ``make`` that reads no file (e.g. the design's facts), done
     #: while this process would otherwise wait for the worker's files
     prepare: Callable[[Run], None] | None = None
+    #: for a job of many parts whose files include parts' own (the shop DXF's profiles):
+    #: ``for_part(name)`` is the job writing only part ``name``'s own files, None when it
+    #: writes none of that part's (``tactcad export --part``)
+    for_part: Callable[[str], "Job | None"] | None = None
 
 
 def solid_key(spec: PartSpec) -> str:

@@ -24,7 +24,8 @@ from tactcad.drawings.compose import drawing_inputs
 from tactcad.catalogue.files import (ARRAY_PNG, ARRAY_STEP, ASSEMBLY_DRAWING, PDF_NAME, drawing_name,
                                     drawing_png_name, part_step_name, scene_glb_name,
                                     scene_step_name, sheet_dxf_name)
-from tactcad.export.dxf_sheet import dxf_version_option, shop_profiles, write_shop_dxf_files
+from tactcad.export.dxf_sheet import (dxf_version_option, shop_profiles, write_part_dxf_files,
+                                      write_shop_dxf_files)
 from tactcad.export.freecad_review import freecad_identity
 from tactcad.export.job import Job, Run
 from tactcad.export.kinds import EXPORT_KINDS, full_export_kinds
@@ -63,11 +64,19 @@ def step_jobs(run: Run, before: list[Job]) -> list[Job]:
 
 
 def dxf_jobs(run: Run, before: list[Job]) -> list[Job]:
-    """The wire-EDM shop files: one DXF per profile and one per nested sheet."""
+    """The wire-EDM shop files: one DXF per profile and one per nested sheet, in one job
+    that ``--part`` cuts down to a part's own profile files (:attr:`Job.for_part`)."""
     specs, _ = run.array
     version = run.dxf_version or dxf_version_option()
+
+    def for_part(name: str) -> Job | None:
+        if name not in {sp.part for sp in shop_profiles(run.plan)}:
+            return None
+        return Job(f"dxf:{name}", content_key("dxf-part", run.plan, list(specs.values()),
+                                              version, name), _part_dxf(name, version))
+
     return [Job("dxf:shop", content_key("dxf-shop", run.plan, list(specs.values()), version),
-                _shop_dxf(version))]
+                _shop_dxf(version), for_part=for_part)]
 
 
 def _part_step(spec):
@@ -102,6 +111,12 @@ def _array_step(specs, inst):
 def _shop_dxf(version: str):
     def make(run: Run) -> list[dict]:
         return write_shop_dxf_files(run.plan, run.staging, run.log, version)
+    return make
+
+
+def _part_dxf(part: str, version: str):
+    def make(run: Run) -> list[dict]:
+        return write_part_dxf_files(run.plan, run.staging, part, run.log, version)
     return make
 
 

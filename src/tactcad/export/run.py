@@ -28,7 +28,8 @@ from typing import Callable, Sequence
 from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
                             leftover_staging, publish_dir, refuse_system_folder,
                             remove_partial_files, remove_tree, staging_dir, unmakeable_folder,
-                            warn_left_behind, write_bytes_atomic, writing_lock)
+                            unremovable_tree, warn_left_behind, write_bytes_atomic,
+                            writing_lock)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
@@ -185,7 +186,9 @@ def check_out_dir(out_dir: str | Path) -> Path:
             tactcad export (no ``manifest.json``): an export replaces its
             folder as a whole, keeping only files it did not write; or a folder that cannot
             be made (a file on its way, a folder that takes no new one:
-            :func:`tactcad.atomic.unmakeable_folder`).
+            :func:`tactcad.atomic.unmakeable_folder`), or an export whose files this user
+            cannot remove (another user's: :func:`tactcad.atomic.unremovable_tree`), which
+            would otherwise stay hidden beside the new one.
     """
     out = Path(os.path.abspath(os.path.expanduser(str(out_dir))))
     real = out.resolve()
@@ -210,6 +213,13 @@ def check_out_dir(out_dir: str | Path) -> Path:
     reason = unmakeable_folder(real)
     if reason is not None:
         raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({reason})")
+    # the old export is removed once the new one takes its place: one that cannot be
+    # removed would stay hidden beside it, so it is refused before any work
+    stuck = unremovable_tree(real) if real.is_dir() else None
+    if stuck is not None:
+        raise ExportPathError(f"--out {out_dir}: the export there cannot be replaced, its "
+                              f"files cannot be removed by this user ({stuck}); run as a user "
+                              "who may remove them, or name another folder")
     return real
 
 
@@ -257,9 +267,10 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
                   session: SessionWorker | None) -> ExportResult:
     """:func:`_write_set`'s work, once ``out`` is checked and its lock held."""
     refuse_another_designs_export(out, default_product_name(), project.plan.name)
-    stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # a killed run's
+    stuck = [p for old in leftover_staging(out) for p in remove_tree(old)]  # an earlier run's
     warn_left_behind(stuck)
     staging = staging_dir(out)
+    published = False
     try:
         run = Run(project, staging, log, store, dxf_version)
         if parts is not None:
@@ -281,6 +292,7 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             carry_over(out, staging, lambda rel: rel not in ours)
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
+        published = True  # staging now holds the old export, which publish_dir removed
     except OSError as exc:  # name the file in the export folder, not in the staging one
         raise in_target(exc, staging, out) from exc
     except (TactcadError, KeyboardInterrupt):
@@ -291,7 +303,8 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             raise
         raise in_target(full, staging, out) from exc
     finally:
-        warn_left_behind(remove_tree(staging) if staging.exists() else [])
+        if not published and staging.exists():
+            warn_left_behind(remove_tree(staging))
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
                         builds, run.distinct_parts, len(run.worker_made))

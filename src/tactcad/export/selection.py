@@ -3,8 +3,11 @@
 A job's kind is the word before the colon of its name (``step:element_a4mm``,
 ``dxf:shop``, ``scene:array``, ``review:...``, ``drawing:cart``,
 ``drawings:pdf``, ``image:array``, ``bom``); the STEP and drawing jobs belong
-to one part, named after the colon. Jobs that cover many parts in one file
-(the shop DXF, the scenes, the PDF, the BOM) have no part and are left out
+to one part, named after the colon. The shop DXF job writes every part's profile
+and the nested sheets: ``--part`` cuts it down to the part's own profile files
+(``dxf:<part>``, :attr:`~tactcad.export.job.Job.for_part`), a sheet nesting every
+part cut from it being no one part's. Jobs that cover many parts in one file
+(the nested sheets, the scenes, the PDF, the BOM) have no part and are left out
 by ``--part``.
 """
 
@@ -33,31 +36,61 @@ def job_part(name: str) -> str | None:
     return rest if prefix in part_prefixes and rest else None
 
 
+#: What ``--part`` keeps, for ``--help`` and its refusal.
+PART_KEEPS = ("a part's own STEP, drawing and DXF profile files (dxf/<part>_qty<n>.dxf; "
+              "not the nested sheets, which hold every part cut from them)")
+
+
 def select_jobs(jobs: Sequence[Job], only: Sequence[str] = (),
                 parts: Sequence[str] = ()) -> list[Job]:
     """The jobs of the kinds ``only`` and the parts ``parts`` (empty: no filter).
 
-    A kept job that reads the files of jobs left out (the BOM lists the files
-    present) is given a key of its own, so the store never hands it the copy
-    a full export made.
+    A job of many parts that can write a part's own files alone (the shop DXF,
+    :attr:`~tactcad.export.job.Job.for_part`) stands, with ``parts``, for one job per
+    named part it has files of. A kept job that reads the files of jobs left out (the
+    BOM lists the files present) is given a key of its own, so the store never hands it
+    the copy a full export made.
+
+    Args:
+        jobs: every job of the run, in order.
+        only: the ``--only`` kinds.
+        parts: the ``--part`` names.
+
+    Returns:
+        The jobs to run, in order.
 
     Raises:
         DesignError: a part no job writes alone (the message lists them), or
             a selection that leaves no job.
     """
-    known = sorted({p for p in map(job_part, (j.name for j in jobs)) if p})
+    split = _jobs_with_parts(jobs, parts)
+    known = sorted({p for p in map(job_part, (j.name for j in jobs)) if p}
+                   | {p for _, p in split if p})
     for name in parts:
         if name not in known:
             raise DesignError("--part", name, "one of " + ", ".join(known))
-    keep = [j for j in jobs if (not only or job_kind(j.name) in only)
-            and (not parts or job_part(j.name) in parts)]
+    keep = [j for j, part in split if (not only or job_kind(j.name) in only)
+            and (not parts or part in parts)]
     if not keep:
         raise DesignError("--only/--part", {"only": list(only), "part": list(parts)},
                           "a selection that writes at least one file",
-                          "--part keeps a part's own STEP and drawing only")
+                          f"--part keeps {PART_KEEPS}")
     names = sorted(j.name for j in keep)
     return [j if set(j.after) <= set(names)
             else replace(j, key=content_key("partial-set", j.key, names)) for j in keep]
+
+
+def _jobs_with_parts(jobs: Sequence[Job], parts: Sequence[str]) -> list[tuple[Job, str | None]]:
+    """Each job with the part it writes alone (None: a job of many); with ``parts``, a job
+    that can be cut down to a part's own files is replaced by one such job per named part
+    it has files of."""
+    found: list[tuple[Job, str | None]] = []
+    for job in jobs:
+        if parts and job.for_part is not None:
+            found += [(own, name) for name in parts if (own := job.for_part(name)) is not None]
+        else:
+            found.append((job, job_part(job.name)))
+    return found
 
 
 def partial_record(only: Sequence[str], parts: Sequence[str], jobs: Sequence[Job]) -> dict:

@@ -1,0 +1,47 @@
+"""The ``export files`` check group: every file an export's manifest lists is as the export
+wrote it (sha256). A file changed or removed by hand since is one failing check and is left
+as it is: ``tactcad check`` never overwrites work done by hand
+(:func:`tactcad.export.reuse.export_state`, the rule of every product's check)."""
+
+from __future__ import annotations
+
+import shlex
+from pathlib import Path
+from typing import Iterator, Mapping
+
+from tactcad.catalogue.files import MANIFEST
+from tactcad.checks.check_result import CheckResult
+from tactcad.checks.groups import CheckContext, Found
+
+#: The check each edited file fails (:func:`edited_results`).
+EDITED_CHECK = "export_file"
+
+
+def edited_results(out_dir: str | Path, edited: Mapping[str, str]) -> list[CheckResult]:
+    """The export's files as checks: one failing check per file changed or removed since
+    the export (it is left as it is, and ``tactcad export --out DIR`` writes it again),
+    or one passing check when none was.
+
+    Args:
+        out_dir: the export folder, as the user named it (shown in the hint).
+        edited: ``ExportState.edited``.
+
+    Returns:
+        :class:`~tactcad.checks.check_result.CheckResult` s.
+    """
+    again = f"`tactcad export --out {shlex.quote(str(out_dir))}` writes it again"
+    if not edited:
+        return [CheckResult(EDITED_CHECK, MANIFEST, True,
+                            "every file as the export wrote it (sha256 as listed)")]
+    words = {"changed": "edited since the export: sha256 differs from manifest.json",
+             "missing": "removed since the export: missing, manifest.json lists it"}
+    return [CheckResult(EDITED_CHECK, rel, False, f"{words[how]}; {again}")
+            for rel, how in edited.items()]
+
+
+def export_files_group(context: CheckContext) -> Iterator[Found]:
+    """``export files``: :func:`edited_results` of ``context.edited``, the files the check
+    found changed by hand before it read the folder; nothing when it did not look (a
+    ``--scene`` check that wrote the scenes alone, the manifest left as it was)."""
+    if context.edited is not None:
+        yield "export files", edited_results(context.folder, context.edited)

@@ -1,0 +1,143 @@
+"""`tactcad check --out DIR` never writes over files edited by hand: a file of an export of the
+same design changed or removed since fails the export_file check and is left as it is; only
+another design (or no export) is exported again first. An interrupt's line says what the run
+had written."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import tactcad
+from tactcad import atomic, cli
+from tactcad.checks import groups as registry
+from tactcad.checks.export_files import EDITED_CHECK
+from tactcad.export.reuse import file_sha256, reuse_state
+from tactcad.store import stack_versions
+from tactcad.version import VERSION
+
+
+def fake_export(folder: Path, design_sha256: str, files: dict[str, bytes]) -> None:
+    """A folder whose manifest lists ``files`` (written with those bytes) for the design."""
+    for rel, data in files.items():
+        (folder / rel).parent.mkdir(parents=True, exist_ok=True)
+        (folder / rel).write_bytes(data)
+    man = {"design": {"sha256": design_sha256}, "tactcad_version": VERSION,
+           "cad_stack": stack_versions(),
+           "files": [{"path": rel, "sha256": file_sha256(folder / rel)} for rel in files]}
+    (folder / "manifest.json").write_text(json.dumps(man), encoding="utf-8")
+
+
+@pytest.fixture
+def export_files_only(monkeypatch):
+    """The check with only its export files group (the others read a whole export), and
+    an export that fails the test if the check writes one."""
+    from tactcad.export import run
+
+    monkeypatch.setattr(registry, "CHECK_GROUPS",
+                        {"export files": registry.CHECK_GROUPS["export files"]})
+    written = []
+    monkeypatch.setattr(run, "export", lambda project, out, **kw: written.append(out))
+    return written
+
+
+def test_check_leaves_a_hand_edit_as_it_is_and_fails_it(tmp_path, export_files_only):
+    project = tactcad.load()
+    out = tmp_path / "ex"
+    fake_export(out, project.plan.design_hash,
+                {"dxf/spacer_qty6.dxf": b"0\nEOF\n", "drawings/spacer.svg": b"<svg/>",
+                 "bom.csv": b"part,qty\n"})
+    with open(out / "dxf" / "spacer_qty6.dxf", "ab") as fh:
+        fh.write(b"; note\n")
+    (out / "drawings" / "spacer.svg").unlink()
+    edited = (out / "dxf" / "spacer_qty6.dxf").read_bytes()
+
+    report = project.check(out, cache=False)
+
+    assert export_files_only == []  # nothing exported over the edits
+    assert (out / "dxf" / "spacer_qty6.dxf").read_bytes() == edited
+    assert not (out / "drawings" / "spacer.svg").exists()
+    assert report.reused_export and report.export_refusal is None and not report.passed
+    failed = {r.subject: r.detail for r in report.failures}
+    assert set(failed) == {"dxf/spacer_qty6.dxf", "drawings/spacer.svg"}
+    assert all(r.check == EDITED_CHECK for r in report.failures)
+    assert failed["dxf/spacer_qty6.dxf"].startswith(
+        "edited since the export: sha256 differs from manifest.json")
+    assert failed["drawings/spacer.svg"].startswith("removed since the export")
+    assert f"`tactcad export --out {out}` writes it again" in failed["dxf/spacer_qty6.dxf"]
+
+
+def test_check_exports_again_only_for_another_design_or_no_export(tmp_path, export_files_only):
+    project = tactcad.load()
+    other = tmp_path / "other"
+    fake_export(other, "f" * 64, {"bom.csv": b"part,qty\n"})
+    with open(other / "bom.csv", "ab") as fh:
+        fh.write(b"edited\n")
+    report = project.check(other, cache=False)
+    assert export_files_only == [other] and report.export_refusal == "made from another design"
+
+    current = tmp_path / "current"
+    fake_export(current, project.plan.design_hash, {"bom.csv": b"part,qty\n"})
+    report = project.check(current, cache=False)
+    assert export_files_only == [other] and report.passed
+    assert [r.check for r in report.results] == [EDITED_CHECK]
+
+
+def test_the_state_of_an_export_folder(tmp_path):
+    """Edits in an export of the same design are listed, never a reason to export again;
+    a partial export or another version with nothing edited is exported again."""
+    sha = "a" * 64
+    assert reuse_state_of(tmp_path, sha).refusal == f"no manifest.json in {tmp_path}"
+    fake_export(tmp_path, sha, {"a.txt": b"a", "b.txt": b"b"})
+    assert reuse_state_of(tmp_path, sha).refusal is None
+    (tmp_path / "a.txt").write_text("edited")
+    (tmp_path / "b.txt").unlink()
+    state = reuse_state_of(tmp_path, sha)
+    assert state.refusal is None and state.edited == {"a.txt": "changed", "b.txt": "missing"}
+    assert reuse_state_of(tmp_path, "b" * 64).refusal == "made from another design"
+    fake_export(tmp_path, sha, {"a.txt": b"a"})
+    man = json.loads((tmp_path / "manifest.json").read_text())
+    (tmp_path / "manifest.json").write_text(json.dumps({**man, "partial": {}}))
+    assert "partial" in reuse_state_of(tmp_path, sha).refusal
+    (tmp_path / "manifest.json").write_text(json.dumps({**man, "cad_stack": {}}))
+    assert "CAD stack" in reuse_state_of(tmp_path, sha).refusal
+
+
+def reuse_state_of(folder: Path, sha: str):
+    class Plan:
+        design_hash = sha
+    return reuse_state(Plan(), folder)
+
+
+def test_check_help_says_hand_edits_are_never_written_over(capsys):
+    with pytest.raises(SystemExit):
+        cli.main(["check", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "is never written over" in text and "export files" in text
+
+
+def test_an_interrupt_after_a_folder_was_written_says_so(tmp_path, monkeypatch, capsys):
+    """The line an interrupt ends with names what the run had written (a check's export
+    before its checks), and says the previous files are left only when none was."""
+    from tactcad.commands import scenes as scenes_cmd
+
+    out = tmp_path / "ex"
+
+    def written_then_interrupted(args):
+        staging = atomic.staging_dir(out)
+        (staging / "a.txt").write_text("new")
+        atomic.publish_dir(staging, out)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(scenes_cmd, "run", written_then_interrupted)
+    assert cli.main(["scenes"]) == cli.EXIT_INTERRUPTED
+    err = capsys.readouterr().err
+    assert f"this run had already written {out} before it" in err
+    assert "the previous files are left as they were" not in err
+
+    monkeypatch.setattr(scenes_cmd, "run", lambda args: (_ for _ in ()).throw(KeyboardInterrupt))
+    assert cli.main(["scenes"]) == cli.EXIT_INTERRUPTED
+    assert capsys.readouterr().err.strip() == \
+        "tactcad: interrupted; the previous files are left as they were"
