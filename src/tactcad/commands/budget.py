@@ -56,25 +56,19 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def calibrations_from_file(path: str, plan) -> dict:
     """Element number -> fitted :class:`~tactcad.mechanics.calibration.Calibration` of the
-    readings in ``path``.
+    readings in ``path``, read as ``tactcad calibrate --data`` reads it (the same reader, the
+    same refusals, the same force gauge where the file states none: the rigs').
 
     Raises:
-        DesignError: an element number the design does not have.
-        CalibrationError: the file cannot be read or fitted.
+        CalibrationError: the file cannot be read or fitted, or names an element number the
+            design does not have (:func:`tactcad.mechanics.calibration_file.read_calibration`).
     """
-    from tactcad.errors import DesignError
-    from tactcad.mechanics.calibration import fit_calibration
-    from tactcad.mechanics.measured_io import read_measured
+    from tactcad.mechanics.calibration_file import read_calibration
+    from tactcad.studies.verification import calibration_gauge
 
-    data, _ = read_measured(path)
-    numbers = [s.number for s in plan.slots]
-    out = {}
-    for element, d in data.items():
-        if element not in numbers:
-            raise DesignError("--calibration", f"{path}: element {element}",
-                              f"element numbers of the design, {min(numbers)} ... {max(numbers)}")
-        out[element] = fit_calibration(d.z_travel_um, d.force_N, d.signal_V, d.k_sensor_N_per_mm)
-    return out
+    k_sensor = float(calibration_gauge(plan).gauge.stiffness_N_per_mm)
+    return read_calibration(path, "--calibration", default_k_sensor=k_sensor,
+                            element_numbers=[s.number for s in plan.slots]).fits
 
 
 def run(args: argparse.Namespace) -> int:

@@ -211,17 +211,20 @@ def run(args: argparse.Namespace) -> int:
                            f"{noise_signal[0]:g} V, seed {args.seed}",)), encoding="utf-8")
                 report["written_csv"] = args.write_csv
         else:
-            from tactcad.mechanics.measured_io import parse_mapping, read_measured
+            from tactcad.mechanics.calibration_file import read_calibration
+            from tactcad.mechanics.measured_io import parse_mapping
 
-            data, info = read_measured(args.data, args.encoding, parse_mapping(args.map),
-                                       default_k_sensor=k_sensor)
+            data, fits, info = read_calibration(args.data, "--data", args.encoding,
+                                                parse_mapping(args.map), k_sensor,
+                                                [slot.number for slot in plan.slots])
             k_sensor = next(iter(data.values())).k_sensor_N_per_mm
             if k_sensor != float(gauge.stiffness_N_per_mm):  # the file states its own gauge
                 report["force_gauge"] = {"model": None, "stiffness_N_per_mm": k_sensor,
                                          "source": "the data file's k_sensor_N_per_mm"}
             report["input"] = f"{info.format}:{args.data}"
             report["data_file"] = {**info.as_dict(), "read_as": info.describe()}
-        fits = ca.fit_all(data)
+        if args.simulate:
+            fits = ca.fit_all(data)
         report["fig4"] = [{"element": e, "z_um": d.z_travel_um.tolist(),
                            "deflection_um": (1e3 * fits[e].deflection_mm).tolist(),
                            "force_N": d.force_N.tolist(), "signal_V": d.signal_V.tolist()}

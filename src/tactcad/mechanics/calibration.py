@@ -38,7 +38,19 @@ DEFAULT_NOISE_SIGNAL_V = 0.001
 
 
 class CalibrationError(TactcadError, ValueError):
-    """Calibration input that cannot be fitted or is physically impossible."""
+    """Calibration input that cannot be fitted or is physically impossible.
+
+    Attributes:
+        field: the column (``force_N``) or option (``--data``) refused, None when the
+            message names none.
+        value: the value refused (a cell's text, a file's path), None when none.
+        allowed: what is allowed, in words with units, None when the message says it.
+    """
+
+    def __init__(self, message: str, field: str | None = None, value: object = None,
+                 allowed: str | None = None):
+        super().__init__(message)
+        self.field, self.value, self.allowed = field, value, allowed
 
 
 # ---------------------------------------------------------------------------
@@ -416,14 +428,26 @@ def format_calibration_csv(data: dict[int, CalibrationData], comments: tuple[str
     readings keyed by element.
 
     Readings of one element are numbered into runs by the repeats of its Z
-    steps (a reading whose Z is not above the previous one starts a new run).
+    steps (a reading whose Z is not above the previous one starts a new run). Every
+    number is written to its shortest exact form (``repr``), so a refit of the text
+    gives the fit of ``data``: a rounded signal would add its rounding to the noise.
+
+    Args:
+        data: element -> its readings (one force gauge for all).
+        comments: lines written first, each after ``# ``.
+
+    Returns:
+        The CSV text, ending in a newline.
+
+    Raises:
+        CalibrationError: the elements were read on gauges of different stiffness.
     """
     sensors = {d.k_sensor_N_per_mm for d in data.values()}
     if len(sensors) > 1:
         raise CalibrationError(f"k_sensor_N_per_mm = {sorted(sensors)}: allowed one value per file")
     lines = [f"# {c}" for c in comments]
     if sensors:
-        lines.append(f"# {CSV_SENSOR_KEY} = {sensors.pop():g}")
+        lines.append(f"# {CSV_SENSOR_KEY} = {float(sensors.pop())!r}")
     lines.append(",".join(CSV_COLUMNS))
     for element, d in data.items():
         run, previous = 1, -np.inf
@@ -431,7 +455,7 @@ def format_calibration_csv(data: dict[int, CalibrationData], comments: tuple[str
             if z <= previous:
                 run += 1
             previous = z
-            lines.append(f"{element},{run},{z:g},{f:.4f},{v:.4f}")
+            lines.append(f"{element},{run},{float(z)!r},{float(f)!r},{float(v)!r}")
     return "\n".join(lines) + "\n"
 
 

@@ -36,6 +36,8 @@ from typing import Callable, Iterable, Iterator, Mapping
 
 import numpy as np
 
+from tactcad.errors import short_repr
+
 from tactcad.mechanics.calibration import CSV_COLUMNS as COLUMNS
 from tactcad.mechanics.calibration import CSV_SENSOR_KEY as SENSOR_KEY
 from tactcad.mechanics.calibration import (K_SENSOR_N_PER_MM, CalibrationData,
@@ -49,6 +51,8 @@ FORMATS = ("csv", "lvm", "tdms")
 #: cell, and the fit's sums of squares stay finite.
 LIMITS = {"element": (1e9, ""), "run": (1e9, ""), "z_um": (1e6, "um"), "force_N": (1e5, "N"),
           "signal_V": (1e4, "V")}
+#: Longest excerpt of a header or channel list echoed in a refusal (characters).
+MAX_SHOWN_CHARS = 200
 _SEPARATORS = {",": "comma", ";": "semicolon", "\t": "tab"}
 _BOMS = ((codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"),
          (codecs.BOM_UTF16_BE, "utf-16"))
@@ -68,6 +72,8 @@ class ReadInfo:
         decimal: ``.`` or ``,`` (None for TDMS).
         mapping: column -> the CSV header, LVM or TDMS channel it was read from.
         readings: number of readings.
+        places: element -> where each of its readings is in the file (``line 12``, or
+            ``row 12`` of a TDMS file), in the order of its readings.
     """
 
     path: str
@@ -77,6 +83,7 @@ class ReadInfo:
     decimal: str | None = None
     mapping: Mapping[str, str] = field(default_factory=dict)
     readings: int = 0
+    places: Mapping[int, tuple[str, ...]] = field(default_factory=dict)
 
     def describe(self) -> str:
         """One phrase, e.g. ``csv, utf-8 with byte order mark, semicolon-separated, decimal comma``."""
@@ -111,11 +118,13 @@ def parse_mapping(texts: Iterable[str] | None) -> dict[str, str]:
         for pair in text.split(","):
             column, sep, source = (s.strip() for s in pair.partition("="))
             if not sep or column not in COLUMNS or not source:
-                raise CalibrationError(
-                    f"--map = {pair!r}: allowed COLUMN=CHANNEL pairs, comma-separated, with "
-                    f"COLUMN one of {', '.join(COLUMNS)}, e.g. signal_V=Dev1/ai1")
+                allowed = (f"COLUMN=CHANNEL pairs, comma-separated, with COLUMN one of "
+                           f"{', '.join(COLUMNS)}, e.g. signal_V=Dev1/ai1")
+                raise CalibrationError(f"--map = {pair!r}: allowed {allowed}", "--map", pair,
+                                       allowed)
             if column in out:
-                raise CalibrationError(f"--map = {text!r}: column {column} given twice")
+                raise CalibrationError(f"--map = {text!r}: column {column} given twice",
+                                       "--map", text, "each column once")
             out[column] = source
     return out
 
@@ -169,6 +178,7 @@ def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] 
     text, used = decode(raw, encoding, where)
     if fmt == "lvm":
         return _read_lvm(text, used, where, mapping, default_k_sensor)
+    _check_reads_as(raw, text, used, where, mapping)
     return parse_csv_text(text, where, mapping, used, default_k_sensor)
 
 
@@ -188,8 +198,9 @@ def _check_encoding(name: str) -> None:
     except (LookupError, ValueError, TypeError):
         info = None
     if info is None or not getattr(info, "_is_text_encoding", True):
-        raise CalibrationError(f"--encoding = {name!r}: allowed a text encoding name such as "
-                               "utf-8, utf-8-sig, cp1252, latin-1, utf-16")
+        allowed = "a text encoding name such as utf-8, utf-8-sig, cp1252, latin-1, utf-16"
+        raise CalibrationError(f"--encoding = {name!r}: allowed {allowed}", "--encoding", name,
+                               allowed)
 
 
 def decode(raw: bytes, encoding: str | None, where: str) -> tuple[str, str]:
@@ -229,6 +240,42 @@ def decode(raw: bytes, encoding: str | None, where: str) -> tuple[str, str]:
     return text.lstrip("\ufeff"), used
 
 
+#: Encodings tried on a CSV file whose header holds no column in the encoding asked for.
+_OTHER_ENCODINGS = ("utf-8", "utf-16", "cp1252")
+
+
+def _header_line(text: str) -> str:
+    """The first line that is neither blank nor a ``#`` comment ("" if none)."""
+    return next((line for line in text.splitlines()
+                 if line.strip() and not line.strip().startswith("#")), "")
+
+
+def _names_a_column(line: str, mapping: Mapping[str, str]) -> bool:
+    return any(mapping.get(c, c) in line for c in COLUMNS)
+
+
+def _check_reads_as(raw: bytes, text: str, used: str, where: str,
+                    mapping: Mapping[str, str]) -> None:
+    """Refuse a CSV text whose header holds no column while another encoding of the same
+    bytes gives one: the encoding asked for is the wrong one (its text is mojibake)."""
+    if _names_a_column(_header_line(text), mapping):
+        return
+    for other in _OTHER_ENCODINGS:
+        if other == used:
+            continue
+        try:
+            candidate = raw.decode(other).lstrip("\ufeff")
+        except UnicodeError:
+            continue
+        if _names_a_column(_header_line(candidate), mapping):
+            found = short_repr(_header_line(text))
+            allowed = f"the file's own encoding, e.g. {other}"
+            raise CalibrationError(
+                f"{where} does not read as {used.upper()}: its header line reads {found}, "
+                f"which names none of the columns {', '.join(COLUMNS)}; try --encoding {other}",
+                "--encoding", used, allowed)
+
+
 # ---------------------------------------------------------------------------
 # Readings -> CalibrationData (one set of rules for every format)
 # ---------------------------------------------------------------------------
@@ -238,31 +285,43 @@ class _Readings:
 
     def __init__(self) -> None:
         self.by_element: dict[int, list[tuple[float, float, float]]] = {}
+        self.places: dict[int, list[str]] = {}
         self.count = 0
 
-    def add(self, values: Mapping[str, float], where: Callable[[str], str]) -> None:
+    def add(self, values: Mapping[str, float], where: Callable[[str], str], place: str) -> None:
+        """Add one reading; ``place`` says where it is (``line 12``, ``row 12``)."""
         for c in COLUMNS:
             if not np.isfinite(values[c]):
-                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed a finite number")
+                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed a finite number",
+                                       c, values[c], "a finite number")
             if abs(values[c]) > LIMITS[c][0]:
-                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed |value| <= "
-                                       f"{LIMITS[c][0]:g} {LIMITS[c][1]}")
-        element = _integer(values["element"], where("element"))
-        _integer(values["run"], where("run"))
+                allowed = f"|value| <= {LIMITS[c][0]:g} {LIMITS[c][1]}".rstrip()
+                raise CalibrationError(f"{where(c)} = {values[c]!r}: allowed {allowed}",
+                                       c, values[c], allowed)
+        element = _integer(values["element"], where("element"), "element")
+        _integer(values["run"], where("run"), "run")
         if values["z_um"] < 0:
-            raise CalibrationError(f"{where('z_um')} = {values['z_um']!r}: allowed >= 0 um")
+            raise CalibrationError(f"{where('z_um')} = {values['z_um']!r}: allowed >= 0 um",
+                                   "z_um", values["z_um"], ">= 0 um")
         self.by_element.setdefault(element, []).append(
             (values["z_um"], values["force_N"], values["signal_V"]))
+        self.places.setdefault(element, []).append(place)
         self.count += 1
+
+    def places_of(self) -> dict[int, tuple[str, ...]]:
+        """Element -> the places of its readings (for :class:`ReadInfo`)."""
+        return {e: tuple(p) for e, p in self.places.items()}
 
     def result(self, where: str, k_sensor: float) -> dict[int, CalibrationData]:
         if not self.count:
-            raise CalibrationError(f"{where}: readings = 0: allowed >= 3 readings per element")
+            raise CalibrationError(f"{where}: readings = 0: allowed >= 3 readings per element",
+                                   "readings", 0, ">= 3 readings per element")
         out = {}
         for element, rows in self.by_element.items():
             if len(rows) < 3:
                 raise CalibrationError(f"{where}: element {element}: readings = {len(rows)}: "
-                                       "allowed >= 3")
+                                       "allowed >= 3", "readings", len(rows),
+                                       ">= 3 readings per element")
             z, f, v = (np.array(c, dtype=float) for c in zip(*rows))
             for a in (z, f, v):
                 a.flags.writeable = False
@@ -270,32 +329,37 @@ class _Readings:
         return out
 
 
-def _integer(x: float, where: str) -> int:
+def _integer(x: float, where: str, column: str | None = None) -> int:
     if not (x == int(x) and 1 <= x <= 1e9):
-        raise CalibrationError(f"{where} = {x!r}: allowed an integer >= 1")
+        raise CalibrationError(f"{where} = {x!r}: allowed an integer >= 1", column, x,
+                               "an integer >= 1")
     return int(x)
 
 
 def _sensor_stiffness(value: str, where: str, decimal: str = ".") -> float:
-    k = _number(value, where, decimal)
+    k = _number(value, where, decimal, SENSOR_KEY)
     if not (np.isfinite(k) and k > 0):
-        raise CalibrationError(f"{where} = {value.strip()!r}: allowed a number > 0 (N/mm)")
+        raise CalibrationError(f"{where} = {value.strip()!r}: allowed a number > 0 (N/mm)",
+                               SENSOR_KEY, value.strip(), "a number > 0 (N/mm)")
     return k
 
 
-def _number(text: str, where: str, decimal: str = ".") -> float:
+def _number(text: str, where: str, decimal: str = ".", column: str | None = None) -> float:
     cell = text.strip()
     if decimal == ",":
         if "." in cell:
             raise CalibrationError(f"{where} = {cell!r}: allowed a number with a decimal comma "
-                                   "like the rest of the file")
+                                   "like the rest of the file", column, cell,
+                                   "a number with a decimal comma like the rest of the file")
         cell = cell.replace(",", ".")
     try:
         x = float(cell)
     except ValueError:
-        raise CalibrationError(f"{where} = {text.strip()[:40]!r}: allowed a number") from None
+        raise CalibrationError(f"{where} = {text.strip()[:40]!r}: allowed a number", column,
+                               text.strip()[:40], "a number") from None
     if not np.isfinite(x):
-        raise CalibrationError(f"{where} = {text.strip()!r}: allowed a finite number")
+        raise CalibrationError(f"{where} = {text.strip()!r}: allowed a finite number", column,
+                               text.strip(), "a finite number")
     return x
 
 
@@ -311,16 +375,17 @@ def _resolve(names: list[str], mapping: Mapping[str, str], where: str,
         hits = [i for i, n in enumerate(names) if n == source]
         if len(hits) > 1:
             raise CalibrationError(f"{where}: {kind} {source!r} appears {len(hits)} times: "
-                                   "allowed once")
+                                   "allowed once", c, source, f"one {kind} named {source!r}")
         if hits:
             out[c] = hits[0]
         else:
             missing.append(c if source == c else f"{c} (mapped to {source!r})")
     if missing:
-        shown = [n for n in names if n][:20]
-        raise CalibrationError(
-            f"{where}: {kind}s = {shown}: missing {', '.join(missing)}; allowed {kind}s named "
-            f"{', '.join(COLUMNS)}, or a --map COLUMN={kind.upper()} for each other name")
+        shown = short_repr([n for n in names if n][:20], MAX_SHOWN_CHARS)
+        allowed = (f"{kind}s named {', '.join(COLUMNS)}, or a --map COLUMN={kind.upper()} for "
+                   "each other name")
+        raise CalibrationError(f"{where}: {kind}s = {shown}: missing {', '.join(missing)}; "
+                               f"allowed {allowed}", missing[0].split(" ")[0], shown, allowed)
     return out
 
 
@@ -361,15 +426,19 @@ def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] 
     if len(set(header)) != len(header):
         dup = next(h for h in header if header.count(h) > 1)
         raise CalibrationError(f"{source}: line {header_n}, column {dup!r}: appears twice in the "
-                               "header: allowed once")
+                               "header: allowed once", dup, f"{dup} twice", "each column once")
     if not mapping:  # without a mapping the header is exactly the five columns
         missing = [c for c in COLUMNS if c not in header]
         unknown = [c for c in header if c not in COLUMNS]
         if missing or unknown:
+            allowed = (f"exactly {list(COLUMNS)}, separated by comma, semicolon or tab, or "
+                       "--map COLUMN=HEADER for other names")
             raise CalibrationError(
-                f"{source}: line {header_n}: columns = {header}: allowed exactly {list(COLUMNS)} "
-                f"(missing {missing}, unknown {unknown}), separated by comma, semicolon or tab, "
-                "or --map COLUMN=HEADER for other names")
+                f"{source}: line {header_n}: columns = {short_repr(header, MAX_SHOWN_CHARS)}: "
+                f"allowed exactly {list(COLUMNS)} (missing {missing}, unknown "
+                f"{short_repr(unknown, MAX_SHOWN_CHARS)}), separated by comma, semicolon or tab, "
+                "or --map COLUMN=HEADER for other names", missing[0] if missing else None,
+                short_repr(header, MAX_SHOWN_CHARS), allowed)
     index = _resolve(header, mapping, f"{source}: line {header_n}", "column")
     decimal = _decimal_of(lines[1:], separator)
     k_sensor = default_k_sensor if sensor_line is None else _sensor_stiffness(
@@ -381,12 +450,13 @@ def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] 
             raise CalibrationError(f"{source}: line {n}, column {min(len(cells), len(header)) + 1}:"
                                    f" {len(cells)} values: allowed {len(header)} "
                                    f"({separator.join(header)})")
-        values = {c: _number(cells[i], f"{source}: line {n}, column {c}", decimal)
+        values = {c: _number(cells[i], f"{source}: line {n}, column {c}", decimal, c)
                   for c, i in index.items()}
-        readings.add(values, lambda c, n=n: f"{source}: line {n}, column {c}")
+        readings.add(values, lambda c, n=n: f"{source}: line {n}, column {c}", f"line {n}")
     data = readings.result(source, k_sensor)
     return data, ReadInfo(source, "csv", encoding, separator, decimal,
-                          {c: header[i] for c, i in index.items()}, readings.count)
+                          {c: header[i] for c, i in index.items()}, readings.count,
+                          readings.places_of())
 
 
 def _split_header(line: str, mapping: Mapping[str, str]) -> tuple[str, list[str]]:
@@ -430,15 +500,19 @@ def _read_lvm(text: str, encoding: str, where: str, mapping: Mapping[str, str],
     k_sensor = default_k_sensor
     if SENSOR_KEY in lvm:
         k_sensor = _sensor_stiffness(str(lvm[SENSOR_KEY]), f"{where}: header {SENSOR_KEY}", decimal)
+    empty_heads: list[int] = []  # header lines of segments with no readings below them
     for s in range(int(lvm.get("Segments", 0))):
         seg = lvm[s]
         names = [n.strip() for n in seg.get("Channel names", [])]
         if "data" not in seg or not names:
             continue
         line_of = rows_at[s] if s < len(rows_at) else None
-        head_line = (line_of[0] - 1) if line_of else 1
+        head_line = (line_of[0] - 1) if line_of else _lvm_header_line(text, separator, s)
         index = _resolve(names, mapping, f"{where}: line {head_line}", "channel")
         used = {c: names[i] for c, i in index.items()}
+        if np.size(seg["data"]) == 0:  # a header the logger wrote before any reading
+            empty_heads.append(head_line)
+            continue
         data = np.asarray(seg["data"], dtype=float).reshape(len(seg["data"]), -1)
         for r, row in enumerate(data):
             n = line_of[r] if line_of and r < len(line_of) else head_line + 1 + r
@@ -446,16 +520,21 @@ def _read_lvm(text: str, encoding: str, where: str, mapping: Mapping[str, str],
             for c, i in index.items():
                 x = row[i] if i < row.size else np.nan
                 if not np.isfinite(x):
+                    cell = _lvm_cell(text, n, i, separator)
+                    allowed = f"a finite number (decimal {decimal!r})"
                     raise CalibrationError(f"{where}: line {n}, column {c} (channel {names[i]!r}): "
-                                           f"{_lvm_cell(text, n, i, separator)!r}: allowed a "
-                                           f"finite number (decimal {decimal!r})")
+                                           f"{cell!r}: allowed {allowed}", c, cell, allowed)
                 values[c] = float(x)
-            readings.add(values, lambda c, n=n: f"{where}: line {n}, column {c}")
+            readings.add(values, lambda c, n=n: f"{where}: line {n}, column {c}", f"line {n}")
+    if not readings.count and empty_heads:
+        raise CalibrationError(f"{where}: line {empty_heads[0]}: no readings below the header: "
+                               "allowed >= 3 readings per element below the X_Value line",
+                               allowed=">= 3 readings per element below the X_Value line")
     if not readings.count:
         raise CalibrationError(f"{where}: line 1: no data segment with channel names: allowed a "
                                "LabVIEW measurement file with an X_Value header line and readings")
     return readings.result(where, k_sensor), ReadInfo(where, "lvm", encoding, separator, decimal,
-                                                      used, readings.count)
+                                                      used, readings.count, readings.places_of())
 
 
 def _lvm_separator(text: str) -> str:
@@ -479,6 +558,13 @@ def _lvm_data_lines(text: str, separator: str) -> list[list[int]]:
             else:
                 current.append(n)
     return out
+
+
+def _lvm_header_line(text: str, separator: str, segment: int) -> int:
+    """Line number (1-based) of segment ``segment``'s X_Value header line (1 if none)."""
+    heads = [n for n, line in enumerate(text.splitlines(), start=1)
+             if line.split(separator)[0] == "X_Value"]
+    return heads[segment] if segment < len(heads) else 1
 
 
 def _lvm_cell(text: str, line: int, index: int, separator: str) -> str:
@@ -547,6 +633,8 @@ def _read_tdms(p: Path, mapping: Mapping[str, str], default_k_sensor: float = K_
         source = mapping.get(c, c)
         if source not in channels and len(short.get(source, [])) == 1:
             source = short[source][0]
+        elif source not in channels and len(short.get(source, [])) > 1:
+            raise _ambiguous_channel(where, c, source, short[source])
         resolved[c] = source
     index = _resolve(names, resolved, where, "channel")
     used = {c: names[i] for c, i in index.items()}
@@ -564,12 +652,24 @@ def _read_tdms(p: Path, mapping: Mapping[str, str], default_k_sensor: float = K_
             try:
                 values[c] = float(arrays[used[c]][r])
             except (TypeError, ValueError):
+                cell = str(arrays[used[c]][r])[:40]
                 raise CalibrationError(f"{where}: row {r + 1}, column {c} (channel {used[c]!r}) = "
-                                       f"{str(arrays[used[c]][r])[:40]!r}: allowed a number") from None
+                                       f"{cell!r}: allowed a number", c, cell, "a number") from None
         readings.add(values, lambda c, r=r: f"{where}: row {r + 1}, column {c} "
-                                            f"(channel {used[c]!r})")
+                                            f"(channel {used[c]!r})", f"row {r + 1}")
     return readings.result(where, k_sensor), ReadInfo(where, "tdms", mapping=used,
-                                                      readings=readings.count)
+                                                      readings=readings.count,
+                                                      places=readings.places_of())
+
+
+def _ambiguous_channel(where: str, column: str, name: str, paths: list[str]) -> CalibrationError:
+    """The refusal of a bare channel name that more than one TDMS group holds."""
+    groups = [p.split("/", 1)[0] for p in paths]
+    listed = ", ".join(groups[:-1]) + f" and {groups[-1]}"
+    allowed = (f"one channel per column: choose one with --map {column}={paths[0]} "
+               f"(or another of {', '.join(paths)}), or keep one group in the file")
+    return CalibrationError(f"{where}: column {column}: channel {name!r} is ambiguous: it is in "
+                            f"groups {listed}: allowed {allowed}", column, name, allowed)
 
 
 # ---------------------------------------------------------------------------
