@@ -204,6 +204,23 @@ _KEPT_WEBS: ContextVar[dict | None] = ContextVar("kept_web_solves", default=None
 
 
 @contextmanager
+def candidates_weighed() -> Iterator[None]:
+    """Where the search weighs its candidates: no range warning is said (they are not the
+    design asked about, :func:`tactcad.mechanics.correction.range_warnings_unsaid`), so each
+    element's closed-form estimate is kept and read again
+    (:func:`tactcad.mechanics.ladder.closed_form_estimates_kept`).
+
+    Returns:
+        A context manager.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+    from tactcad.mechanics.ladder import closed_form_estimates_kept
+
+    with range_warnings_unsaid(), closed_form_estimates_kept():
+        yield
+
+
+@contextmanager
 def web_solves_kept() -> Iterator[None]:
     """Keep every :func:`solve_web` answer while inside (one command's search): the same
     geometry, material, K target (N/mm) and bracket (mm) give the same web, so each is
@@ -407,15 +424,16 @@ def with_stops(d: dict, plan: Any, targets: Targets) -> dict:
     element's lowest fatigue limit where that comes first, no smaller than the least gap
     set by hand (mm)."""
     from tactcad.design.comb_plan import MIN_SET_GAP_MM
-    from tactcad.mechanics.element_strength import plan_strength
+    from tactcad.mechanics.element_strength import part_strength
     from tactcad.mechanics.hard_stops import engagement_force_N, fatigue_limit_N, stop_gap_for
 
     gaps = []
     force = targets.full_scale_force_N
-    strength = {r.element: r for r in plan_strength(plan, force, "closed-form")}
+    # a stop reads its element's K and fatigue limits: the same for every element of a part
+    strength = part_strength(plan, force)
     for stop in plan.hard_stops:
         g = plan.element(stop.element).geometry
-        r = strength[stop.element]
+        r = strength[g.part_name]
         k = r.stiffness_N_per_mm
         engage_N = engagement_force_N(STOP_MULTIPLE, force, fatigue_limit_N(r)[0])
         gap = stop_gap_for(engage_N / force, force / k, stop, g.arm_length_mm)
@@ -653,10 +671,9 @@ def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str
     Raises:
         DesignError: ``--columns`` out of 1 ... 12.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = searched_base(base, columns, process)
-    with range_warnings_unsaid():  # the candidates are not the design asked about
+    with candidates_weighed():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                            progress) for sheet in sheets_of(base) for scale in KM_SCALES]
     return base, tried
@@ -709,12 +726,11 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
     Raises:
         DesignError: ``--columns`` out of 1 ... 12.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = searched_base(base, columns)
     judged = [] if judged is None else judged
     short: list[tuple] = []  # judged only when none has the margin
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
                 c, d, at = prepared_candidate(base, sheet, scale, columns, room, targets,
@@ -764,10 +780,9 @@ def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, 
     Raises:
         InverseDesignError: with ``max_grasp_force_N``, no candidate survives the grasp.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     good = counting(tried)
-    with range_warnings_unsaid():
+    with candidates_weighed():
         first = chosen(good) if max_grasp_force_N is None else \
             surviving(good, max_grasp_force_N, room, envelope_of, targets, columns)
         best, fasteners = with_fasteners(first, room, envelope_of)
@@ -811,10 +826,9 @@ def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
     Returns:
         True when a fewer-column comb counts or is rated for some force.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     scales = stop_fitting_scales(targets)  # the others carry at no column count
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for fewer in range(columns - 1, 0, -1):
             for sheet in sheets_of(base):
                 for scale in scales:
@@ -916,12 +930,11 @@ def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Ta
     ``bounds`` ((sheet, scale) -> :class:`ForceBound`, kept over one refusal's calls):
     a pair whose bound fails at ``force_N`` is not judged again (the answer is the same,
     its webs and limits do not depend on the force); each pair judged adds its bound."""
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     at = replace(targets, full_scale_force_N=force_N)
     pairs = order or [(sheet, scale) for sheet in sheets_of(base) for scale in KM_SCALES]
     known = {} if bounds is None else bounds
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for sheet, scale in pairs:
             bound = known.get((sheet, scale))
             if bound is not None and bound.fails_at(force_N):
@@ -959,10 +972,9 @@ def rated_at_a_lighter_force(base: dict, columns: int, room: Any, targets: Targe
         The candidates at that force (each with its rating), or [] when none is rated at
         any force tried.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     force = targets.full_scale_force_N / 10.0
-    with range_warnings_unsaid():
+    with candidates_weighed():
         while force >= LIGHTEST_SEARCHED_FORCE_N:
             at = replace(targets, full_scale_force_N=force)
             tried = [candidate(base, sheet, scale, columns, room, at, grade, envelope_of, None)
@@ -1403,11 +1415,10 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
     and K_m scales that rated, so that the force pasted designs); None when no count below
     ``columns`` carries any. Asked when no sheet's comb of ``columns`` has a plan (the
     pitch or the arms bind before any force is judged)."""
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     carrying: tuple[int, float, list, dict] | None = None
     scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for fewer in range(columns - 1, 0, -1):
             rated, judged = [], []
             for sheet in sheets_of(base):
