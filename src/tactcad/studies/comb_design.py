@@ -346,6 +346,33 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     return d, binding
 
 
+def sheet_tables(base: dict, sheet_mm: float, columns: int, room: Any, targets: Targets,
+                 grade: str | None) -> tuple[dict, list[str]]:
+    """:func:`comb_tables`, which no K_m scale changes: inside :func:`web_solves_kept`, the
+    tables of one ``base``, sheet (mm), column count, ``room``, ``targets`` and grade are
+    made once and shared by every scale, so they are read, never changed (:func:`with_webs`
+    changes a copy).
+
+    Args:
+        base, sheet_mm, columns, room, targets, grade: as :func:`comb_tables`.
+
+    Returns:
+        (the tables, the limits already binding), as :func:`comb_tables`.
+    """
+    kept = _KEPT_WEBS.get()
+    if kept is None:
+        return comb_tables(base, sheet_mm, columns, room, targets, grade)
+    # by identity: the entry holds base, room and targets, so no other object takes their ids
+    key = ("tables", id(base), id(room), id(targets), sheet_mm, columns, grade)
+    hit = kept.get(key)
+    if hit is not None and hit[0] is base and hit[1] is room and hit[2] is targets:
+        return hit[3]
+    made = comb_tables(base, sheet_mm, columns, room, targets, grade)
+    kept[key] = (base, room, targets, made)
+    kept[("shared tables", id(made[0]))] = made[0]  # never changed: starting_plan's by id
+    return made
+
+
 def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, list[str]]:
     """``d`` with every web solved for its K target and every stop gap set (see the module
     doc); the binding limits when a web or the plan is refused."""
@@ -389,7 +416,8 @@ def starting_plan(d: dict) -> Any:
     """The plan of a sheet's comb tables before its webs are solved
     (:func:`comb_tables`' ``d``, which no K_m scale changes); inside
     :func:`web_solves_kept` each distinct table is planned once, its refusal kept as well,
-    so the scales of one sheet share it.
+    so the scales of one sheet share it (tables :func:`sheet_tables` shares are known by
+    their identity, others by their content).
 
     Args:
         d: the comb's tables at their starting webs.
@@ -403,7 +431,12 @@ def starting_plan(d: dict) -> Any:
     import json
 
     kept = _KEPT_WEBS.get()
-    key = ("plan", json.dumps(d, sort_keys=True, default=repr)) if kept is not None else None
+    if kept is None:
+        key = None
+    elif kept.get(("shared tables", id(d))) is d:  # sheet_tables' own: never changed
+        key = ("plan of shared tables", id(d))
+    else:
+        key = ("plan", json.dumps(d, sort_keys=True, default=repr))
     if key is not None and key in kept:
         plan, refused = kept[key]
     else:
@@ -1111,7 +1144,7 @@ def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, 
         if why:
             return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None,
                                  (FOOTPRINT,), REFUSED_AT_ANY_FORCE), None, room
-    d, binding = comb_tables(base, sheet, columns, room, targets, grade)
+    d, binding = sheet_tables(base, sheet, columns, room, targets, grade)
     codes: tuple[str, ...] = (SHEET,) * len(binding)  # the pitch leaves no arm
     bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
     if not binding:
