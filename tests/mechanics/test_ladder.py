@@ -139,3 +139,25 @@ def test_table1_all_levels_side_by_side(plan, monkeypatch, capsys):
     # Beam theory (uncorrected) is stiffer than the 3D-corrected closed form everywhere.
     assert all(b["predicted_N_per_mm"] > c["predicted_N_per_mm"]
                for b, c in zip(data["beam"], data["closed-form"]))
+
+
+def test_closed_form_estimates_kept_inside_give_the_same_estimate_worked_out_once(
+        plan, monkeypatch):
+    from tactcad.mechanics import ladder
+
+    g, material = plan.element(1).geometry, plan.material
+    fresh = estimate("closed-form", g, material, element=1)
+    runs = []
+    run = ladder.LADDER.run
+    monkeypatch.setattr(ladder.LADDER, "run", lambda *a, **k: runs.append(a[0]) or run(*a, **k))
+    with ladder.closed_form_estimates_kept():
+        first = estimate("closed-form", g, material, element=1)
+        again = estimate("closed-form", g, material, element=2)
+        beam = estimate("beam", g, material)
+    after = estimate("closed-form", g, material)
+    assert runs == ["closed-form", "beam", "closed-form"]  # kept inside, not after
+    assert again.element == 2 and again.wall_time_s == first.wall_time_s
+    for r in (first, again, after):
+        assert (r.stiffness_N_per_mm, r.face_strain_per_N, r.error_estimate_rel) == \
+            (fresh.stiffness_N_per_mm, fresh.face_strain_per_N, fresh.error_estimate_rel)
+    assert beam.model == "beam"

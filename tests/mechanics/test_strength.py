@@ -317,3 +317,15 @@ def test_surface_factor_falls_with_the_ultimate_strength():
     assert hard == pytest.approx(s.marin_a_MPa * 1300.0 ** s.marin_b)
     with pytest.raises(ValueError, match="ultimate"):
         s.factor(0.0)
+
+
+def test_part_strength_is_each_parts_first_element_of_plan_strength(plan):
+    from tactcad.mechanics.element_strength import part_strength
+    from tactcad.mechanics.element_strength import plan_strength as every_element
+
+    records = every_element(plan, 1.5)
+    parts = part_strength(plan, 1.5)
+    assert set(parts) == {r.part_name for r in records}
+    for name, record in parts.items():
+        first = next(r for r in records if r.part_name == name)
+        assert json.dumps(dataclasses.asdict(record)) == json.dumps(dataclasses.asdict(first))

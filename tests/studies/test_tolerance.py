@@ -180,3 +180,18 @@ def test_the_element_band_report_draws_run_tolerances_element_figures(plan):
     record = toleranced_band_record(plan, 0.05, 0.01)
     expected = mc_band(run_tolerance(plan, MONTE_CARLO_SAMPLES, seed=MONTE_CARLO_SEED))[0]
     assert record["predicted"] == expected
+
+
+@pytest.mark.parametrize("overrides", [{}, {"sheet_mm": 0.01}, {"distribution": "uniform"}])
+def test_a_chunks_samples_are_its_own_draw_to_the_bit(plan, overrides):
+    from tactcad.studies.tolerance_montecarlo import chunk_samples, chunk_specs, draw_samples
+
+    tol = Tolerances.of_plan(plan, **overrides)
+    for spec in chunk_specs(plan, tol, 2600, 5):
+        drawn = draw_samples(plan, tol, spec.n, np.random.default_rng(spec.seed))
+        for _ in range(2):  # the second from the normal draws kept by the first
+            samples = chunk_samples(spec)
+            for name in ("web_mm", "notch_radius_mm", "arm_length_mm", "youngs_modulus_MPa",
+                         "sheet_scale"):
+                want, got = np.asarray(getattr(drawn, name)), np.asarray(getattr(samples, name))
+                assert got.shape == want.shape and got.tobytes() == want.tobytes(), name

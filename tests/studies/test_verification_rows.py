@@ -267,3 +267,19 @@ def test_an_excitation_that_overheats_the_gauge_fails_verification_by_tn502():
     assert between["predicted"] > TN502_THIN_SECTION_W_PER_MM2[1]
     assert between["grid_rise_K"] <= TN502_HIGH_EXCITATION_DERATING_K
     assert between["verdict"] == "undecided" and between["level_fixed"]
+
+
+def test_worst_and_error_is_the_worst_resolution_and_its_error_kept_once(plan):
+    from tactcad.studies.verification import (requirements_of, resolution_error_rel,
+                                              sensing_units, worst_and_error,
+                                              worst_resolution)
+
+    units, req = sensing_units(plan, element_figures(plan)), requirements_of(plan)
+    rng, force = req.kobj_range_N_per_mm, req.full_scale_force_N
+    kept: dict = {}
+    want = (worst_resolution(units, rng, force), resolution_error_rel(units, rng, force))
+    assert worst_and_error(units, rng, force) == want
+    assert worst_and_error(units, list(rng), force, kept) == want
+    assert worst_and_error(units, rng, force, kept) == want and len(kept) == 1
+    other = worst_and_error(units, rng, 2 * force, kept)
+    assert other[0] != want[0] and len(kept) == 2

@@ -218,19 +218,41 @@ def arm_underside(d: CombTables) -> float:
     return spine_height(d).value + max(cut_gap(g, slot)[0] for g in stop_gaps(d))
 
 
-def comb_element(d: CombTables, arm_mm: float, web_mm: float) -> ElementGeometry:
+def comb_element(d: CombTables, arm_mm: float, web_mm: float,
+                 shared: dict[str, Any] | None = None) -> ElementGeometry:
     """An element's profile in its own frame (the sheet frame at its offset).
 
     Every element of the comb is as long as the longest (:func:`element_length` of the
     longest arm): a shorter arm's post grows by the difference, so every tip lies at one
     place in its cell and a column's tips sit side by side across the rows (one radius
-    from a jaw's pivot, whatever their arms)."""
+    from a jaw's pivot, whatever their arms).
+
+    Args:
+        d: the comb's tables. arm_mm, web_mm: the element's arm and web (mm).
+        shared: :func:`shared_element_sizes` of ``d`` where already worked out.
+
+    Returns:
+        The element's geometry (mm).
+    """
+    return ElementGeometry(arm_length_mm=arm_mm, web_thickness_mm=web_mm,
+                           **(shared if shared is not None else shared_element_sizes(d)))
+
+
+def shared_element_sizes(d: CombTables) -> dict[str, Any]:
+    """Every :class:`ElementGeometry` field but the arm and the web, which every element of
+    the comb shares (mm; its process): worked out once for a sheet's elements.
+
+    Args:
+        d: the comb's tables.
+
+    Returns:
+        Field name -> value.
+    """
     e = d.element
-    base = arm_underside(d) + e.arm_height_mm
-    return ElementGeometry(
-        arm_length_mm=arm_mm, web_thickness_mm=web_mm, notch_radius_mm=e.notch_radius_mm,
-        tip_width_mm=e.tip_width_mm, tip_height_mm=e.tip_height_mm,
-        arm_height_mm=e.arm_height_mm, base_height_mm=base,
+    return dict(
+        notch_radius_mm=e.notch_radius_mm, tip_width_mm=e.tip_width_mm,
+        tip_height_mm=e.tip_height_mm, arm_height_mm=e.arm_height_mm,
+        base_height_mm=arm_underside(d) + e.arm_height_mm,
         overall_length_mm=element_length(d, max(d.arms.lengths_mm)),
         inside_corner_radius_mm=e.inside_corner_radius_mm, sheet_thickness_mm=d.sheet.thickness_mm,
         web_tolerance_mm=tolerances_of(d.model_dump(exclude_none=True)).web_thickness_mm,
@@ -251,11 +273,12 @@ def comb_sheets(d: CombTables) -> tuple[CombSheet, ...]:
     slot = row_rules(d).min_slot_width_mm
     y_arm = arm_underside(d)
     arms, web, gaps = d.arms.lengths_mm, webs(d), stop_gaps(d)
+    shared = shared_element_sizes(d)  # the same for every element: worked out once
     out = []
     for row in range(d.array.rows):
         numbers = range(row * cols, row * cols + cols)
         out.append(CombSheet(
-            row=row, elements=tuple(comb_element(d, arms[i], web[i]) for i in numbers),
+            row=row, elements=tuple(comb_element(d, arms[i], web[i], shared) for i in numbers),
             offsets_mm=tuple(c * pitch for c in range(cols)),
             ledges_mm=tuple(y_arm - cut_gap(gaps[i], slot)[0] for i in numbers),
             length_mm=row_length(d).value, spine_height_mm=spine_height(d).value,
@@ -328,10 +351,12 @@ def _check_spacer_process(d: CombTables, p: Problems) -> None:
               f"{hi:g} mm)", CUT_PROCESSES[name].sheet_source)
 
 
-def comb_geometry(d: CombTables) -> CombGeometry:
+def comb_geometry(d: CombTables, sheets: tuple[CombSheet, ...] | None = None) -> CombGeometry:
+    """The comb's geometry (mm); ``sheets``: :func:`comb_sheets` of ``d`` where already
+    worked out."""
     screws, dowels = fastener_positions(d)
     return CombGeometry(
-        sheets=comb_sheets(d), spacer_thickness_mm=d.comb.spacer_thickness_mm, screw=screw(d),
+        sheets=comb_sheets(d) if sheets is None else sheets, spacer_thickness_mm=d.comb.spacer_thickness_mm, screw=screw(d),
         screw_length_mm=screw_length(d)[1].value, dowel_diameter_mm=dowel_diameter(d),
         dowel_length_mm=dowel_length(d)[1].value, screw_x_mm=screws, dowel_x_mm=dowels,
         fastener_y_mm=spine_height(d).value / 2, envelope_mm=envelope(d),
@@ -592,7 +617,7 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
         pitch_mm=d.array.pitch_mm, slots=element_slots(d, sheets), edm=edm_rules(d),
         derived=derived_values(d), references=refs, references_reason=why, pairing=pairing_of(d),
         assumptions=read_assumptions(data, CombFile, p, "comb.post_length_mm"),
-        construction="monolithic-comb", comb=comb_geometry(d), hard_stops=hard_stops(d, sheets),
+        construction="monolithic-comb", comb=comb_geometry(d, sheets), hard_stops=hard_stops(d, sheets),
         raw=copy.deepcopy(dict(data)))
 
 

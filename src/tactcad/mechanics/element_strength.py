@@ -65,6 +65,7 @@ Units: mm, N, MPa, N/mm; strain dimensionless.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import asdict, dataclass, field, replace
@@ -505,8 +506,37 @@ def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStr
     gauge strain. Unsigned (1/N)."""
     from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
-    grid = grid_strain_per_N(g, plan.material, readout_chain(plan), es.model)["grid"]
+    chain = readout_chain(plan)
+    if not is_meshed(es.model):  # a pure function of its inputs: read once per process
+        return replace(es, grid_strain_per_N=unmeshed_grid_strain_per_N(
+            g, plan.material, chain, es.model))
+    grid = grid_strain_per_N(g, plan.material, chain, es.model)["grid"]
     return replace(es, grid_strain_per_N=abs(float(grid)))
+
+
+@functools.lru_cache(maxsize=1024)
+def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
+                               model: str) -> float:
+    """The unsigned strain per newton (1/N) the gauge grid of ``chain`` reads on ``g`` at a
+    level that meshes nothing (closed form, beam): ``grid_strain_per_N``'s ``"grid"``, kept
+    per process on its (frozen) inputs, since a search reads the same element's grid strain
+    for its stops, its limits and its verification matrix.
+
+    Args:
+        g: the element (mm). material: its material (MPa). chain: the design's read-out
+            (:class:`tactcad.design.readout_section.ReadoutChain`). model: the level's name.
+
+    Returns:
+        The strain per newton (1/N, unsigned).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+
+    Source: :func:`tactcad.mechanics.readout_chain.grid_strain_per_N`.
+    """
+    from tactcad.mechanics.readout_chain import grid_strain_per_N
+
+    return abs(float(grid_strain_per_N(g, material, chain, model)["grid"]))
 
 
 #: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.
@@ -550,6 +580,32 @@ def plan_strength(plan: Plan, full_scale_force_N: float, model: str = "closed-fo
             cache[g.part_name] = at_the_grid(stress(g, plan.material, model), g, plan)
         out.append(strength_record(slot.number, g, plan.material, plan.strength,
                                    cache[g.part_name], full_scale_force_N, reference_load))
+    return out
+
+
+def part_strength(plan: Plan, full_scale_force_N: float) -> dict[str, StrengthRecord]:
+    """The closed form's :class:`StrengthRecord` of each distinct part of ``plan``: the
+    record :func:`plan_strength` gives its first element (every element of a part has the
+    same figures; only the element number differs), without working out the others.
+
+    Args:
+        plan: the design. full_scale_force_N: its rated full-scale force (N), > 0.
+
+    Returns:
+        Part name -> the record of its first element.
+
+    Raises:
+        DesignError: the material has no yield strength.
+        ValueError: a rated force that is not finite and > 0.
+    """
+    require_yield(plan.material)
+    out: dict[str, StrengthRecord] = {}
+    for slot in plan.slots:
+        g = slot.geometry
+        if g.part_name not in out:
+            es = at_the_grid(closed_form_stress(g, plan.material, "closed-form"), g, plan)
+            out[g.part_name] = strength_record(slot.number, g, plan.material, plan.strength,
+                                               es, full_scale_force_N)
     return out
 
 

@@ -18,7 +18,10 @@ Units: mm, N, MPa, N/mm, s.
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
+from typing import Iterator
 
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
@@ -105,8 +108,44 @@ def estimate(model: str, g: ElementGeometry, material: Material, *, element: int
     Raises:
         UnknownModelError: ``model`` is not a level of :data:`LEVELS`.
     """
-    result = LADDER.run(model, (g, material), options, label=g.part_name)
+    kept = _KEPT_CLOSED_FORM.get()
+    if kept is not None and model == CLOSED_FORM and not options:
+        key = (g, material)
+        result = kept.get(key)
+        if result is None:
+            result = kept[key] = LADDER.run(model, (g, material), options, label=g.part_name)
+    else:
+        result = LADDER.run(model, (g, material), options, label=g.part_name)
     return result if result.element == element else replace(result, element=element)
+
+
+#: The closed-form level's name (the estimates :func:`closed_form_estimates_kept` keeps).
+CLOSED_FORM = "closed-form"
+#: Closed-form estimates already made inside :func:`closed_form_estimates_kept` (None
+#: outside it), by (geometry, material).
+_KEPT_CLOSED_FORM: ContextVar[dict | None] = ContextVar("kept_closed_form_estimates",
+                                                        default=None)
+
+
+@contextmanager
+def closed_form_estimates_kept() -> Iterator[None]:
+    """Keep every closed-form :func:`estimate` (no options) made while inside, by geometry
+    and material: a search judging a candidate reads the same element's closed form for its
+    stops, limits, stresses, K band and verification matrix, and the closed form is a pure
+    function of them (its range warnings are said the first time only, so enter it where
+    they are not said at all: :func:`tactcad.mechanics.correction.range_warnings_unsaid`).
+    Nested uses share the outer one's estimates.
+
+    Returns:
+        A context manager; the estimates are dropped on leaving the outermost (a kept
+        result's ``wall_time_s`` is its first evaluation's).
+    """
+    token = _KEPT_CLOSED_FORM.set({}) if _KEPT_CLOSED_FORM.get() is None else None
+    try:
+        yield
+    finally:
+        if token is not None:
+            _KEPT_CLOSED_FORM.reset(token)
 
 
 def gauge_rise_error_rel(model: str) -> float:

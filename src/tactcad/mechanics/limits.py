@@ -138,12 +138,17 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
     stresses = dict(stresses or {})
     k_errors = dict(k_errors or {})
     out = []
+    graded: dict[str, ElementGeometry] = {}  # part -> the geometry its grid strain is read on
     for slot in plan.slots:
         g = slot.geometry
         if g.part_name not in stresses:
             stresses[g.part_name] = element_stress(g, plan.material, model)
-        # the gauge limits on the strain the grid reads (the read-out's), not the face's
-        stresses[g.part_name] = at_the_grid(stresses[g.part_name], g, plan)
+        # the gauge limits on the strain the grid reads (the read-out's), not the face's;
+        # read once per part and geometry: at_the_grid sets the grid strain from g alone,
+        # so reading it again on the same g gives the same stress
+        if graded.get(g.part_name) != g:
+            stresses[g.part_name] = at_the_grid(stresses[g.part_name], g, plan)
+            graded[g.part_name] = g
         if g.part_name not in k_errors:
             k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \
                 if not is_meshed(model) else stresses[g.part_name].stress_error_rel

@@ -204,6 +204,23 @@ _KEPT_WEBS: ContextVar[dict | None] = ContextVar("kept_web_solves", default=None
 
 
 @contextmanager
+def candidates_weighed() -> Iterator[None]:
+    """Where the search weighs its candidates: no range warning is said (they are not the
+    design asked about, :func:`tactcad.mechanics.correction.range_warnings_unsaid`), so each
+    element's closed-form estimate is kept and read again
+    (:func:`tactcad.mechanics.ladder.closed_form_estimates_kept`).
+
+    Returns:
+        A context manager.
+    """
+    from tactcad.mechanics.correction import range_warnings_unsaid
+    from tactcad.mechanics.ladder import closed_form_estimates_kept
+
+    with range_warnings_unsaid(), closed_form_estimates_kept():
+        yield
+
+
+@contextmanager
 def web_solves_kept() -> Iterator[None]:
     """Keep every :func:`solve_web` answer while inside (one command's search): the same
     geometry, material, K target (N/mm) and bracket (mm) give the same web, so each is
@@ -351,6 +368,33 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     return d, binding
 
 
+def sheet_tables(base: dict, sheet_mm: float, columns: int, room: Any, targets: Targets,
+                 grade: str | None) -> tuple[dict, list[str]]:
+    """:func:`comb_tables`, which no K_m scale changes: inside :func:`web_solves_kept`, the
+    tables of one ``base``, sheet (mm), column count, ``room``, ``targets`` and grade are
+    made once and shared by every scale, so they are read, never changed (:func:`with_webs`
+    changes a copy).
+
+    Args:
+        base, sheet_mm, columns, room, targets, grade: as :func:`comb_tables`.
+
+    Returns:
+        (the tables, the limits already binding), as :func:`comb_tables`.
+    """
+    kept = _KEPT_WEBS.get()
+    if kept is None:
+        return comb_tables(base, sheet_mm, columns, room, targets, grade)
+    # by identity: the entry holds base, room and targets, so no other object takes their ids
+    key = ("tables", id(base), id(room), id(targets), sheet_mm, columns, grade)
+    hit = kept.get(key)
+    if hit is not None and hit[0] is base and hit[1] is room and hit[2] is targets:
+        return hit[3]
+    made = comb_tables(base, sheet_mm, columns, room, targets, grade)
+    kept[key] = (base, room, targets, made)
+    kept[("shared tables", id(made[0]))] = made[0]  # never changed: starting_plan's by id
+    return made
+
+
 def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, list[str]]:
     """``d`` with every web solved for its K target and every stop gap set (see the module
     doc); the binding limits when a web or the plan is refused."""
@@ -394,7 +438,8 @@ def starting_plan(d: dict) -> Any:
     """The plan of a sheet's comb tables before its webs are solved
     (:func:`comb_tables`' ``d``, which no K_m scale changes); inside
     :func:`web_solves_kept` each distinct table is planned once, its refusal kept as well,
-    so the scales of one sheet share it.
+    so the scales of one sheet share it (tables :func:`sheet_tables` shares are known by
+    their identity, others by their content).
 
     Args:
         d: the comb's tables at their starting webs.
@@ -408,7 +453,12 @@ def starting_plan(d: dict) -> Any:
     import json
 
     kept = _KEPT_WEBS.get()
-    key = ("plan", json.dumps(d, sort_keys=True, default=repr)) if kept is not None else None
+    if kept is None:
+        key = None
+    elif kept.get(("shared tables", id(d))) is d:  # sheet_tables' own: never changed
+        key = ("plan of shared tables", id(d))
+    else:
+        key = ("plan", json.dumps(d, sort_keys=True, default=repr))
     if key is not None and key in kept:
         plan, refused = kept[key]
     else:
@@ -429,15 +479,16 @@ def with_stops(d: dict, plan: Any, targets: Targets) -> dict:
     element's lowest fatigue limit where that comes first, no smaller than the least gap
     set by hand (mm)."""
     from tactcad.design.comb_plan import MIN_SET_GAP_MM
-    from tactcad.mechanics.element_strength import plan_strength
+    from tactcad.mechanics.element_strength import part_strength
     from tactcad.mechanics.hard_stops import engagement_force_N, fatigue_limit_N, stop_gap_for
 
     gaps = []
     force = targets.full_scale_force_N
-    strength = {r.element: r for r in plan_strength(plan, force, "closed-form")}
+    # a stop reads its element's K and fatigue limits: the same for every element of a part
+    strength = part_strength(plan, force)
     for stop in plan.hard_stops:
         g = plan.element(stop.element).geometry
-        r = strength[stop.element]
+        r = strength[g.part_name]
         k = r.stiffness_N_per_mm
         engage_N = engagement_force_N(STOP_MULTIPLE, force, fatigue_limit_N(r)[0])
         gap = stop_gap_for(engage_N / force, force / k, stop, g.arm_length_mm)
@@ -675,10 +726,9 @@ def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str
     Raises:
         DesignError: ``--columns`` out of 1 ... 12.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = searched_base(base, columns, process)
-    with range_warnings_unsaid():  # the candidates are not the design asked about
+    with candidates_weighed():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                            progress) for sheet in sheets_of(base) for scale in KM_SCALES]
     return base, tried
@@ -731,12 +781,11 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
     Raises:
         DesignError: ``--columns`` out of 1 ... 12.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     base = searched_base(base, columns)
     judged = [] if judged is None else judged
     short: list[tuple] = []  # judged only when none has the margin
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
                 c, d, at = prepared_candidate(base, sheet, scale, columns, room, targets,
@@ -786,10 +835,9 @@ def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, 
     Raises:
         InverseDesignError: with ``max_grasp_force_N``, no candidate survives the grasp.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     good = counting(tried)
-    with range_warnings_unsaid():
+    with candidates_weighed():
         first = chosen(good) if max_grasp_force_N is None else \
             surviving(good, max_grasp_force_N, room, envelope_of, targets, columns)
         best, fasteners = with_fasteners(first, room, envelope_of)
@@ -833,10 +881,9 @@ def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
     Returns:
         True when a fewer-column comb counts or is rated for some force.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     scales = stop_fitting_scales(targets)  # the others carry at no column count
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for fewer in range(columns - 1, 0, -1):
             for sheet in sheets_of(base):
                 for scale in scales:
@@ -938,12 +985,11 @@ def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Ta
     ``bounds`` ((sheet, scale) -> :class:`ForceBound`, kept over one refusal's calls):
     a pair whose bound fails at ``force_N`` is not judged again (the answer is the same,
     its webs and limits do not depend on the force); each pair judged adds its bound."""
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     at = replace(targets, full_scale_force_N=force_N)
     pairs = order or [(sheet, scale) for sheet in sheets_of(base) for scale in KM_SCALES]
     known = {} if bounds is None else bounds
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for sheet, scale in pairs:
             bound = known.get((sheet, scale))
             if bound is not None and bound.fails_at(force_N):
@@ -981,10 +1027,9 @@ def rated_at_a_lighter_force(base: dict, columns: int, room: Any, targets: Targe
         The candidates at that force (each with its rating), or [] when none is rated at
         any force tried.
     """
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     force = targets.full_scale_force_N / 10.0
-    with range_warnings_unsaid():
+    with candidates_weighed():
         while force >= LIGHTEST_SEARCHED_FORCE_N:
             at = replace(targets, full_scale_force_N=force)
             tried = [candidate(base, sheet, scale, columns, room, at, grade, envelope_of, None)
@@ -1121,7 +1166,7 @@ def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, 
         if why:
             return CombCandidate(sheet, km_scale, None, None, (why,), -math.inf, None,
                                  (FOOTPRINT,), REFUSED_AT_ANY_FORCE), None, room
-    d, binding = comb_tables(base, sheet, columns, room, targets, grade)
+    d, binding = sheet_tables(base, sheet, columns, room, targets, grade)
     codes: tuple[str, ...] = (SHEET,) * len(binding)  # the pitch leaves no arm
     bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
     if not binding:
@@ -1430,11 +1475,10 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
     and K_m scales that rated, so that the force pasted designs); None when no count below
     ``columns`` carries any. Asked when no sheet's comb of ``columns`` has a plan (the
     pitch or the arms bind before any force is judged)."""
-    from tactcad.mechanics.correction import range_warnings_unsaid
 
     carrying: tuple[int, float, list, dict] | None = None
     scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
-    with range_warnings_unsaid():
+    with candidates_weighed():
         for fewer in range(columns - 1, 0, -1):
             rated, judged = [], []
             for sheet in sheets_of(base):

@@ -42,6 +42,7 @@ Units: mm, N, MPa, N/mm; R dimensionless.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Iterable, Mapping, Sequence
@@ -189,6 +190,66 @@ def draw_samples(plan: Plan, tol: Tolerances, n: int, rng: np.random.Generator) 
         return Samples(web, radius, arm, modulus)
     sheet = 1.0 + _deviation(rng, tol.sheet_mm, (n, 1), d) / plan.sheet_thickness_mm
     return Samples(web, radius, arm, modulus, sheet)
+
+
+def chunk_samples(spec: "ChunkSpec") -> Samples:
+    """:func:`draw_samples` of one chunk, the same numbers to the bit: a normal draw is
+    its tolerance / 3 times the chunk's standard normal draws, which depend on the chunk's
+    seed, its size and the plan's element count alone, so they are drawn once per process
+    (:func:`standard_normal_draws`); a uniform draw is drawn anew.
+
+    Args:
+        spec: the chunk (its plan, tolerances, sample count and seed).
+
+    Returns:
+        :class:`Samples` with arrays (n, number of elements) and (n, 1).
+    """
+    tol, plan, seed = spec.tolerances, spec.plan, spec.seed
+    if tol.distribution != "normal" or not isinstance(seed.entropy, int):
+        return draw_samples(plan, tol, spec.n, np.random.default_rng(seed))
+    geoms = [s.geometry for s in plan.slots]
+    z_web, z_radius, z_arm, z_modulus, z_sheet = standard_normal_draws(
+        seed.entropy, tuple(seed.spawn_key), seed.pool_size, spec.n, len(geoms),
+        tol.sheet_mm > 0)
+
+    def nominal(key: str) -> np.ndarray:
+        return np.array([getattr(g, key) for g in geoms])
+
+    # Generator.normal(0, sigma) is 0 + sigma z of the same stream's standard normal z
+    web = nominal("web_thickness_mm") + (0.0 + (tol.web_mm / 3.0) * z_web)
+    radius = nominal("notch_radius_mm") + (0.0 + (tol.notch_radius_mm / 3.0) * z_radius)
+    arm = nominal("arm_length_mm") + (0.0 + (tol.arm_length_mm / 3.0) * z_arm)
+    modulus = plan.material.youngs_modulus_MPa * (
+        1.0 + (0.0 + (tol.modulus_rel / 3.0) * z_modulus))
+    if z_sheet is None:
+        return Samples(web, radius, arm, modulus)
+    sheet = 1.0 + (0.0 + (tol.sheet_mm / 3.0) * z_sheet) / plan.sheet_thickness_mm
+    return Samples(web, radius, arm, modulus, sheet)
+
+
+@functools.lru_cache(maxsize=64)
+def standard_normal_draws(entropy: int, spawn_key: tuple[int, ...], pool_size: int, n: int,
+                          m: int, sheet: bool) -> tuple[np.ndarray, ...]:
+    """The standard normal draws of one chunk, in :func:`draw_samples`' order: web, notch
+    radius and arm (n, m), modulus (n, 1) and, where ``sheet``, the sheet (n, 1), else None.
+    Kept per process (read-only arrays: every chunk of one seed, size and element count
+    draws these numbers).
+
+    Args:
+        entropy, spawn_key, pool_size: the chunk's ``numpy.random.SeedSequence``.
+        n: samples. m: elements. sheet: whether the sheet is drawn.
+
+    Returns:
+        The five arrays (the last None without a sheet draw).
+    """
+    rng = np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=spawn_key,
+                                                       pool_size=pool_size))
+    draws = [rng.standard_normal((n, m)) for _ in range(3)] + [rng.standard_normal((n, 1))]
+    draws.append(rng.standard_normal((n, 1)) if sheet else None)
+    for d in draws:
+        if d is not None:
+            d.setflags(write=False)
+    return tuple(draws)
 
 
 def corrected_stiffness(web_mm, notch_radius_mm, arm_length_mm, youngs_modulus_MPa,
@@ -343,7 +404,7 @@ def chunk_specs(plan: Plan, tol: Tolerances, n: int, seed: int,
 
 def run_chunk(spec: ChunkSpec) -> dict[str, np.ndarray]:
     """Draw one chunk and evaluate K: ``{"K": (n, m), "E": (n, 1), "web": (n, m)}``."""
-    s = draw_samples(spec.plan, spec.tolerances, spec.n, np.random.default_rng(spec.seed))
+    s = chunk_samples(spec)
     return {"K": stiffness_samples(spec.plan, s, spec.correction), "E": s.youngs_modulus_MPa,
             "web": s.web_mm}
 

@@ -334,17 +334,48 @@ ROOM_BEYOND_ERROR = 1e-6
 UNREADABLE_RESOLUTION_REL = 10.0
 
 
-def kobj_resolution_requirement(units: SensingUnits, rng, force_N: float) -> tuple[float, float]:
+def worst_and_error(units: SensingUnits, rng, force_N: float,
+                    kept: dict | None = None) -> tuple[float, float]:
+    """(:func:`worst_resolution`, :func:`resolution_error_rel`) of ``units`` over ``rng``
+    (N/mm) at ``force_N`` (N), the worst worked out once for both; ``kept``: answers already
+    found for these units (by range and force), where one verification matrix asks for the
+    derived requirement and for its record.
+
+    Args:
+        units: the sensing units. rng: (low, high) K_obj (N/mm). force_N: the force (N).
+        kept: a dict of answers for these same ``units``, filled here; None: none kept.
+
+    Returns:
+        (the worst relative resolution, its relative error; inf where a move by the K
+        errors leaves a unit unreadable).
+    """
+    from tactcad.mechanics.resolution import worst_resolution_rel
+
+    key = (tuple(float(v) for v in rng), float(force_N))
+    if kept is not None and key in kept:
+        return kept[key]
+    worst = worst_resolution(units, rng, force_N)
+    moved = [worst_resolution_rel(units.shifted_by_error(sr, sm), rng, force_N)
+             for sr in (-1, 1) for sm in (-1, 1)]
+    error = math.inf if not all(math.isfinite(w) for w in moved) else \
+        max(abs(w / worst - 1.0) for w in moved)
+    if kept is not None:
+        kept[key] = (worst, error)
+    return worst, error
+
+
+def kobj_resolution_requirement(units: SensingUnits, rng, force_N: float,
+                                kept: dict | None = None) -> tuple[float, float]:
     """(requirement, worst) of the K_obj resolution a design reaches: the worst over ``rng``
     (N/mm) at ``force_N`` (N), each element read through the design's own read-out chain,
     padded by its error estimate and rounded up, so that the level it was derived at
     decides it (its margin clears its error); :data:`UNREADABLE_RESOLUTION_REL` and inf
     without a unit. The value may exceed what a design may state (the search refuses it
-    as the force that set it)."""
+    as the force that set it); ``kept``: as :func:`worst_and_error`'s."""
     if not units.read:
         return UNREADABLE_RESOLUTION_REL, math.inf
-    worst = worst_resolution(units, rng, force_N)
-    padded = worst * (1.0 + resolution_error_rel(units, rng, force_N)) * (1.0 + ROOM_BEYOND_ERROR)
+    worst, error = worst_and_error(units, rng, force_N, kept)
+    padded = worst * (1.0 + error) * (1.0 + ROOM_BEYOND_ERROR)
     return round_up(padded), worst
 
 
@@ -375,7 +406,10 @@ def smallest_row_ratio(plan: Plan, fig: Figures) -> float:
 # ---------------------------------------------------------------------------
 # The requirements
 # ---------------------------------------------------------------------------
-def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
+def requirements_of(plan: Plan, figures: Figures | None = None,
+                    k_band: tuple[float, float] | None = None,
+                    units: SensingUnits | None = None,
+                    kept: dict | None = None) -> Requirements:
     """The design's requirements: stated values from ``[requirements]``,
     the rest derived from its nominal geometry (corrected closed form) with
     the reason (see the module docstring). Worked out once per plan when no
@@ -384,6 +418,11 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
     Args:
         plan: the validated design.
         figures: the closed form's :func:`element_figures`, when the caller has them.
+        k_band: (:func:`web_band_rel`, :func:`closed_form_k_error`) of ``plan``, when the
+            caller has them (only read with ``figures``).
+        units, kept: :func:`sensing_units` of ``plan`` at ``figures``' level and the
+            resolutions found for them (:func:`worst_and_error`), where the caller has
+            them (only read with closed-form ``figures``).
 
     Returns:
         the :class:`Requirements` (shared: read them, do not change them).
@@ -393,7 +432,7 @@ def requirements_of(plan: Plan, figures: Figures | None = None) -> Requirements:
     """
     if figures is None:
         return _plan_requirements(plan)
-    return _requirements_from(plan, figures)
+    return _requirements_from(plan, figures, k_band, units, kept)
 
 
 @functools.lru_cache(maxsize=8)
@@ -403,13 +442,20 @@ def _plan_requirements(plan: Plan) -> Requirements:
     return _requirements_from(plan, None)
 
 
-def _requirements_from(plan: Plan, figures: Figures | None) -> Requirements:
-    """:func:`requirements_of` worked out."""
+def _requirements_from(plan: Plan, figures: Figures | None,
+                       k_band: tuple[float, float] | None = None,
+                       units: SensingUnits | None = None,
+                       kept: dict | None = None) -> Requirements:
+    """:func:`requirements_of` worked out (``k_band``: the web band and the closed form's
+    K error, ``units`` and ``kept``: the closed form's sensing units and their resolutions,
+    where already worked out)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
 
     stated = stated_requirements(plan.raw)
     fig = figures if figures is not None and figures.model == "closed-form" \
         else element_figures(plan, "closed-form")
+    if fig is not figures:  # units read at another level are not the closed form's
+        units, kept = None, None
     values: dict[str, Any] = dict(stated)
     reasons = {k: "stated in the design file" for k in stated}
     if "full_scale_force_N" not in values:
@@ -430,14 +476,15 @@ def _requirements_from(plan: Plan, figures: Figures | None) -> Requirements:
             "not stated: the elements' own stiffness span (closed form); eq. 2 reads best "
             "where the elements straddle the object")
     if "k_tolerance_rel" not in values:
-        values["k_tolerance_rel"], band = k_band_requirement(plan)
+        values["k_tolerance_rel"], band = k_band_requirement(plan) if k_band is None else \
+            (padded_band_requirement(*k_band), k_band[0])
         reasons["k_tolerance_rel"] = (f"not stated: the largest K change over the web "
                                       f"tolerance, {100 * band:.3g} % (closed form), padded by "
                                       f"its error and rounded up")
     if "kobj_resolution_rel" not in values:
         values["kobj_resolution_rel"], reasons["kobj_resolution_rel"] = \
             derived_kobj_resolution(plan, fig, values["kobj_range_N_per_mm"],
-                                    values["full_scale_force_N"])
+                                    values["full_scale_force_N"], units, kept)
     band = stated_number(plan.raw, "kr_over_km_tolerance_rel")
     reasons["kr_over_km_tolerance_rel"] = "stated in the design file" if band is not None else (
         f"not stated: {100 * KR_OVER_KM_BAND_REL:g} %, a K_r/K_m 'about' its target, as a "
@@ -455,13 +502,17 @@ def _requirements_from(plan: Plan, figures: Figures | None) -> Requirements:
         footprint_mm=stated_footprint(plan.raw))
 
 
-def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tuple[float, str]:
+def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float,
+                            units: SensingUnits | None = None,
+                            kept: dict | None = None) -> tuple[float, str]:
     """The K_obj resolution requirement a design file leaves out and its reason: what the
     design's own read-out chain reaches (:func:`kobj_resolution_requirement`), at most
     :data:`UNREADABLE_RESOLUTION_REL`, the largest a design may state (a design that reads
-    worse fails it: its full-scale force is too small for its read-out chain)."""
-    units = sensing_units(plan, fig)
-    padded, worst = kobj_resolution_requirement(units, rng, force_N)
+    worse fails it: its full-scale force is too small for its read-out chain). ``units``:
+    :func:`sensing_units` of ``plan`` and ``fig`` where already worked out; ``kept``: as
+    :func:`worst_and_error`'s."""
+    units = sensing_units(plan, fig) if units is None else units
+    padded, worst = kobj_resolution_requirement(units, rng, force_N, kept)
     value = min(padded, UNREADABLE_RESOLUTION_REL)
     if not math.isfinite(worst):
         return value, ("not stated: no element is softer than its row's reference, so no K_obj "
@@ -483,15 +534,15 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float) -> tu
 KOBJ_KEYS = frozenset({"kobj_resolution_rel", "kobj_range_N_per_mm"})
 
 
-def kobj_records(units: SensingUnits, req: Requirements, force_N: float, model: str) -> list[dict]:
+def kobj_records(units: SensingUnits, req: Requirements, force_N: float, model: str,
+                 kept: dict | None = None) -> list[dict]:
     """The records of :data:`KOBJ_KEYS`: the worst relative K_obj resolution over the
     required range and the range read within the required resolution, each element read
     through the design's read-out chain at ``force_N`` (N); none read (no measuring
-    element) fails both."""
+    element) fails both. ``kept``: as :func:`worst_and_error`'s."""
     rng = req.kobj_range_N_per_mm
     if units.read:
-        worst = worst_resolution(units, rng, force_N)
-        res_err = resolution_error_rel(units, rng, force_N)
+        worst, res_err = worst_and_error(units, rng, force_N, kept)
         span = readable_range(units, rng, force_N, req.kobj_resolution_rel)
     else:
         worst, res_err, span = math.inf, 0.0, None
@@ -655,7 +706,12 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, per_kind_binding, plan_limits
 
     fig = element_figures(plan, model, progress, stress)
-    req = requirements or requirements_of(plan, fig)
+    # the web band and K error, read by the derived K band requirement as well: once
+    band, error = web_band_rel(plan), closed_form_k_error(plan)
+    # the units and their resolutions, read by the derived K_obj resolution as well: once
+    units, kept = sensing_units(plan, fig), {}
+    req = requirements or requirements_of(plan, fig, k_band=(band, error), units=units,
+                                          kept=kept)
     out = []
     lims = plan_limits(plan, model, fig.stresses, fig.k_error)
     b = binding(lims)
@@ -667,13 +723,11 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                        binding_element=b.element,
                        limits=[lim.as_json(lim is b) for lim in kinds.values()]))
     out.append(kr_over_km_record(row_pairs(plan, fig), req, model))
-    band, error = web_band_rel(plan), closed_form_k_error(plan)
     out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, error,
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
                        "closed-form", band <= req.k_tolerance_rel))
-    units = sensing_units(plan, fig)
     if units.read or KOBJ_KEYS & req.stated:
-        out.extend(kobj_records(units, req, F, model))
+        out.extend(kobj_records(units, req, F, model, kept))
     # else: no row has an element softer than its reference, so the design reads no K_obj
     # and states no K_obj target: there is nothing of K_obj to verify (derived, none applies)
     from tactcad.studies.tolerance_budget import toleranced_band_record

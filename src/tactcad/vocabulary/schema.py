@@ -471,6 +471,25 @@ def _section_model(annotation: Any) -> Any:
     return annotation
 
 
+@functools.lru_cache(maxsize=1024)
+def names_a_field(model: type[BaseModel], key: str) -> bool:
+    """Whether an ``[assumptions]`` key (``section.key`` or ``section.key[i]``) names a
+    field of one of ``model``'s sections: a question of the model and the key alone, so
+    answered once per process (every validation of a search reads the same keys).
+
+    Args:
+        model: the file's model. key: the assumption's key.
+
+    Returns:
+        True when the section is one of the model's and the key one of its fields.
+    """
+    m = _ASSUMPTION_KEY.match(key)
+    section = model.model_fields.get(m.group(1)) if m else None
+    sub = _section_model(section.annotation) if section is not None else None
+    return bool(isinstance(sub, type) and issubclass(sub, BaseModel)
+                and m.group(2) in sub.model_fields)
+
+
 def read_assumptions(data: Mapping[str, Any], model: type[BaseModel], problems: Problems,
                      example: str) -> tuple[tuple[str, str], ...]:
     """The ``[assumptions]`` table: ``"section.key" = "one-line reason"`` pairs,
@@ -481,10 +500,7 @@ def read_assumptions(data: Mapping[str, Any], model: type[BaseModel], problems: 
         return ()
     out = []
     for key, reason in table.items():
-        m = _ASSUMPTION_KEY.match(key)
-        section = model.model_fields.get(m.group(1)) if m else None
-        sub = _section_model(section.annotation) if section is not None else None
-        if not (isinstance(sub, type) and issubclass(sub, BaseModel) and m.group(2) in sub.model_fields):
+        if not names_a_field(model, key):
             problems.add(f"assumptions.{key}", reason,
                          f"keys naming a field of this file, e.g. '{example}'")
         elif not isinstance(reason, str) or not reason.strip():
