@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 from os import PathLike
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence, TypeVar, cast
 
 if TYPE_CHECKING:  # types only: importing them at run time would load the kernel
     from tactcad.checks.check_result import CheckResult
@@ -40,10 +40,129 @@ if TYPE_CHECKING:  # types only: importing them at run time would load the kerne
 __all__ = ["load", "load_die", "Project", "DieProject", "Element", "CheckReport"]
 
 Progress = Callable[[str], None]
+#: An API method (:func:`keyword_errors` keeps its signature for a type checker).
+Method = TypeVar("Method", bound=Callable[..., Any])
 
 
 def _quiet(line: str) -> None:
     """Progress sink that prints nothing."""
+
+
+def plain(value: Any) -> Any:
+    """An API result as plain Python: every NumPy scalar its Python number or bool, every
+    array a list, walked through dicts, lists and tuples; so ``json.dumps`` takes what the
+    command prints with ``--json``, the same numbers.
+
+    Args:
+        value: a result (dicts, lists, tuples, numbers, NumPy values, text, None).
+
+    Returns:
+        The same structure with no NumPy type left (tuples stay tuples; objects, such
+        as a dataclass, as they are).
+    """
+    import numpy as np
+
+    if isinstance(value, Mapping):
+        return {plain(k): plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [plain(v) for v in value]
+    if type(value) is tuple:  # a named tuple or another tuple type is left as it is
+        return tuple(plain(v) for v in value)
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def option_name(keyword: str) -> str:
+    """The command-line option a keyword argument answers to (``force_N`` -> ``--force-N``)."""
+    return "--" + keyword.replace("_", "-")
+
+
+def with_keyword_names(exc: Exception, keywords: Iterable[str]) -> Exception:
+    """``exc`` with each command-line option that answers to one of ``keywords``
+    (:func:`option_name`) named as that keyword argument: the field ``--force-N`` as
+    ``force_N``, ``--force-N 0.5`` in a text as ``force_N=0.5``; a refusal raised through a
+    command's code, read in the API.
+
+    Args:
+        exc: the refusal (a :class:`~tactcad.errors.DesignError`, its list
+            :class:`~tactcad.errors.DesignErrors`, or another error of one message).
+        keywords: the keyword arguments of the API call.
+
+    Returns:
+        The refusal renamed (``exc`` itself where no option of the call is named).
+    """
+    import re
+
+    from tactcad.errors import DesignError, DesignErrors
+
+    options = {option_name(k): k for k in keywords}
+    if not options:
+        return exc
+    # an option, then its value where one follows (a number, quoted text or a path)
+    pattern = re.compile(r"(?<![\w-])(" + "|".join(map(re.escape, sorted(options, key=len,
+                                                                          reverse=True)))
+                         + r")(?![\w-])(?: (?=[-+\d.'\"/~]|\S*/))?")
+
+    def text(words: Any) -> Any:
+        return pattern.sub(lambda m: options[m.group(1)] + "=", words) \
+            if isinstance(words, str) else words
+
+    def named(e: DesignError) -> bool:
+        words = [e.field, e.allowed, e.why, *(v for a in e.alternatives for v in a.values())]
+        return any(isinstance(w, str) and pattern.search(w) for w in words)
+
+    def error(e: DesignError) -> DesignError:
+        if not named(e):
+            return e
+        alternatives = [{k: text(v) for k, v in a.items()} for a in e.alternatives]
+        return DesignError(options.get(e.field, text(e.field)), e.value, text(e.allowed),
+                           text(e.why), e.file, alternatives=alternatives)
+
+    if isinstance(exc, DesignErrors):
+        return DesignErrors([error(e) for e in exc.errors]) if any(map(named, exc.errors)) \
+            else exc
+    if isinstance(exc, DesignError):
+        return error(exc)
+    if len(exc.args) == 1 and isinstance(exc.args[0], str) and pattern.search(exc.args[0]):
+        return type(exc)(text(exc.args[0]))
+    return exc
+
+
+def keyword_errors(method: Method) -> Method:
+    """An API method whose refusals name its keyword arguments, not the command-line
+    options its work shares with a command (:func:`with_keyword_names`), and whose result
+    is plain Python (:func:`plain`).
+
+    Args:
+        method: the method; its parameters are the keyword arguments named.
+
+    Returns:
+        The method wrapped, its signature kept.
+
+    Raises:
+        TactcadError: the method's refusal, renamed where it names an option of the call.
+    """
+    import functools
+    import inspect
+
+    from tactcad.errors import TactcadError
+
+    keywords = [k for k in inspect.signature(method).parameters if k != "self"]
+
+    @functools.wraps(method)
+    def called(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return plain(method(*args, **kwargs))
+        except TactcadError as exc:
+            renamed = with_keyword_names(exc, keywords)
+            if renamed is exc:
+                raise
+            raise renamed from None
+
+    return cast(Method, called)
 
 
 def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -> "Project":
@@ -101,9 +220,30 @@ def _validated(data: Mapping[str, Any], design: Path,
     from tactcad.project_folder import companion_tables
 
     try:
-        return project_with_design_data(data, design, companions=companion_tables)
+        validated = project_with_design_data(data, design, companions=companion_tables)
+        check_references_stiffer(validated.plan)
+        return validated
     except DesignErrors as exc:
         raise exc.sourced({key: "set" for key in overrides}) from None
+
+
+def check_references_stiffer(plan: "Plan") -> None:
+    """Refuse a design whose named reference is not stiffer than the elements read against
+    it (:func:`tactcad.mechanics.readout_chain.soft_reference_errors`, K at the closed
+    form): it cannot read K_obj.
+
+    Raises:
+        DesignErrors: one refusal per such reference, naming the stiffnesses and the rule.
+    """
+    from tactcad.errors import DesignErrors
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.readout_chain import soft_reference_errors
+
+    if not (plan.raw.get("arms") or {}).get("reference_elements"):
+        return  # each row's stiffest: nothing to compute
+    errors = soft_reference_errors(plan, ladder_stiffness_by_element(plan))
+    if errors:
+        raise DesignErrors(errors)
 
 
 def _checked_overrides(values: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -207,6 +347,7 @@ class Project:
         each built on first access."""
         return Parts(self)
 
+    @keyword_errors
     def assembly(self, scene: str = "array") -> "Compound":
         """A scene as one labelled build123d ``Compound`` (mm, the scene's frame).
 
@@ -239,9 +380,10 @@ class Project:
         """Sensing element ``number`` (1-based, the design's numbering).
 
         Raises:
-            DesignError: no such element (the message gives the range).
+            DesignError: ``number`` not an integer (a bool, a float or a text is none),
+                or no such element (the message gives the range).
         """
-        return Element(self, self.plan.element(number))
+        return Element(self, self.plan.element(element_number(number, len(self.plan.slots))))
 
     @property
     def elements(self) -> list["Element"]:
@@ -249,6 +391,7 @@ class Project:
         return [Element(self, slot) for slot in self.plan.slots]
 
     # --- files ---
+    @keyword_errors
     def export(self, out: str | Path = "exports", only: Sequence[str] | str | None = None,
                part: Sequence[str] | str | None = None, cache: str | Path | None | bool = True,
                dxf_version: str | None = None,
@@ -302,6 +445,7 @@ class Project:
         finally:
             self._report = _quiet
 
+    @keyword_errors
     def verify(self, model: str = "auto", progress: Progress | None = None,
                cache: str | Path | None | bool = True) -> "Verification":
         """The verification matrix of the design's requirements.
@@ -349,8 +493,10 @@ class Project:
             records = verification_matrix(plan, model, progress, req, stress=element_stress,
                                           envelope_mm=envelope)
             levels = []
-        return Verification(model, tuple(records), tuple(levels), req.as_json())
+        return Verification(model, tuple(plain(records)), tuple(plain(levels)),
+                            plain(req.as_json()))
 
+    @keyword_errors
     def check(self, out: str | Path | None = None, scenes: Sequence[str] | None = None,
               cache: str | Path | None | bool = True, progress: Progress | None = None,
               on_group: Callable[[str, list], None] | None = None) -> "CheckReport":
@@ -436,6 +582,24 @@ def _edits_said(edited: Mapping[str, str]) -> str:
             "left as they are and failing the export files check")
 
 
+def element_number(number: Any, count: int) -> int:
+    """``number`` checked as an element's number: an integer (not a bool) in 1 ... ``count``.
+
+    Raises:
+        DesignError: naming the argument ``number``, its value and "an integer 1 ... N".
+    """
+    import numbers
+
+    from tactcad.errors import DesignError
+
+    allowed = f"an integer 1 ... {count} (the design's element numbers)"
+    if isinstance(number, bool) or not isinstance(number, numbers.Integral):
+        raise DesignError("number", number, allowed)
+    if not 1 <= int(number) <= count:
+        raise DesignError("number", number, allowed)
+    return int(number)
+
+
 def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProject":
     """A silicon die's design file as a :class:`DieProject`, planned now (the die product's
     ``load`` hook, :mod:`tactcad.products.silicon_die`; :func:`load` calls it for a die's
@@ -510,6 +674,7 @@ class DieProject:
         assert view is not None, command  # the die's registry entry names each one used here
         return view(self.source, self._args(**options))[0]
 
+    @keyword_errors
     def stiffness(self, model: str = "closed-form") -> dict:
         """Each row's beam K on its frame at ``model`` (``closed-form`` or ``fem3d``), as
         ``tactcad stiffness --json`` gives it (N/mm, relative errors).
@@ -519,36 +684,44 @@ class DieProject:
         """
         return self._report("stiffness", model=model)
 
+    @keyword_errors
     def strength(self) -> dict:
         """Each row's root stress at the force it carries against the strength of etched
         silicon, and the rated-force requirement, as ``tactcad strength --json`` (MPa, N)."""
         return self._report("strength", model="closed-form")
 
+    @keyword_errors
     def readout(self) -> dict:
         """The piezoresistive read-out, as ``tactcad readout --json`` (ohm, V/N, N)."""
         return self._report("readout")
 
+    @keyword_errors
     def modes(self) -> dict:
         """Each row's first resonance, as ``tactcad modal --json`` (Hz)."""
         return self._report("modal")
 
+    @keyword_errors
     def budget(self) -> dict:
         """The K_obj error budget, as ``tactcad budget --json`` (relative, 1 sigma)."""
         return self._report("budget")
 
+    @keyword_errors
     def verify(self) -> dict:
         """The verification matrix, as ``tactcad verify --json`` (``passed``, ``matrix``)."""
         return self._report("verify")
 
+    @keyword_errors
     def thermal(self) -> dict:
         """The die's thermal drift, as ``tactcad thermal --json``."""
         return self._report("thermal")
 
+    @keyword_errors
     def crosstalk(self) -> dict:
         """Each beam's reading under a force on every post, as ``tactcad crosstalk
         --json``."""
         return self._report("crosstalk")
 
+    @keyword_errors
     def grasp(self, force_N: float | None = None, angle_deg: float | None = None,
               kobj: float | None = None, coupling: str = "layer",
               profile: str | None = None, slab_thickness_mm: float | None = None,
@@ -558,10 +731,14 @@ class DieProject:
 
         Raises:
             DesignError: a value out of range, or both a force and an angle (named by the
-                command's option).
+                keyword argument).
         """
+        from tactcad.errors import DesignError
         from tactcad.in_use.grasp_experiment import DEFAULT_PROFILE
 
+        if force_N is not None and angle_deg is not None:  # the command's options exclude it
+            raise DesignError("force_N / angle_deg", (force_N, angle_deg), "one of them, or "
+                              "neither (the default grasp force)")
         return self._report("grasp", force_N=force_N, angle_deg=angle_deg, kobj=kobj,
                             coupling=coupling, profile=profile or DEFAULT_PROFILE,
                             slab_thickness_mm=slab_thickness_mm, opening_deg=opening_deg)
@@ -574,6 +751,7 @@ class DieProject:
 
         return design_head(self.name, self.planned.source)["design"]["sha256"]
 
+    @keyword_errors
     def check(self, out: str | Path | None = None,
               progress: Progress | None = None) -> "CheckReport":
         """Run every check of ``tactcad check`` on the die's export, as the command does
@@ -601,6 +779,7 @@ class DieProject:
         return CheckReport(((f"die {found.name}", found.checks),), found.export_refusal is None,
                            found.export_refusal, None if out is None else str(out))
 
+    @keyword_errors
     def export(self, out: str | Path = "exports", cache: Any = None,
                progress: Progress | None = None) -> int:
         """Write the die's files into ``out`` (masks, wafer, STEP, traveller, drawing, BOM,
@@ -696,6 +875,7 @@ class Element:
         profile extruded by the sheet thickness along +z."""
         return self.project.parts[self.part_name]
 
+    @keyword_errors
     def stiffness(self, model: str = "closed-form", **options: Any) -> "StiffnessResult":
         """Tip stiffness K for a force normal to the contact face.
 
@@ -716,6 +896,7 @@ class Element:
         return estimate(model, self.geometry, self.project.plan.material, element=self.number,
                         **options)
 
+    @keyword_errors
     def modes(self, model: str = "closed-form", modes: int = 3,
               **options: Any) -> "ModalResult":
         """The lowest natural frequencies of the element as clamped in the stiffness model.
@@ -740,6 +921,7 @@ class Element:
         return estimate_modes(model, self.geometry, self.project.plan.material,
                               element=self.number, modes=modes, **options)
 
+    @keyword_errors
     def strength(self, model: str = "closed-form") -> "StrengthRecord":
         """Peak stress per newton at the hinge, this element's yield-limited
         force and its figures at the design's rated full-scale force.

@@ -264,3 +264,69 @@ def test_docs_freecad_script_runs_in_freecadcmd(freecad, tmp_path):
 
     assert found.group(2).split(", ") == sorted(array_parts(project.plan))
     assert (tmp_path / "array-review.FCStd").stat().st_size > 1000
+
+
+# --- plain results, element numbers, keyword names ------------------------------------------
+def test_an_api_result_holds_plain_python_that_json_takes():
+    import numpy as np
+
+    from tactcad.api import plain
+
+    raw = {"dofs": np.int32(7), "passed": np.True_, "k": np.float64(1.5),
+           "beams": np.array([1, 2], dtype=np.int32), "rows": (np.int64(3), [np.float32(0.5)]),
+           np.int64(4): "key", "text": "a"}
+    out = plain(raw)
+    assert json.loads(json.dumps(out)) == {"dofs": 7, "passed": True, "k": 1.5, "beams": [1, 2],
+                                           "rows": [3, [0.5]], "4": "key", "text": "a"}
+    assert type(out["dofs"]) is int and out["passed"] is True and type(out["k"]) is float
+    assert isinstance(out["rows"], tuple)
+
+
+def test_a_check_result_holds_a_bool_whatever_computed_its_verdict():
+    import numpy as np
+
+    from tactcad.checks.check_result import CheckResult
+
+    result = CheckResult("c", "s", np.True_, undecided=np.False_)
+    assert result.passed is True and result.undecided is False
+    assert json.dumps({"passed": result.passed}) == '{"passed": true}'
+
+
+@pytest.mark.parametrize("number", [True, 2.0, "2", 0, 11, None])
+def test_an_element_is_asked_by_an_integer_in_the_designs_range(number):
+    project = tactcad.load(EXAMPLE_DESIGN)
+    with pytest.raises(DesignError) as err:
+        project.element(number)
+    assert err.value.field == "number" and err.value.value == number
+    assert "an integer 1 ... 10" in str(err.value)
+
+
+def test_an_element_number_of_numpy_integer_type_is_taken():
+    import numpy as np
+
+    assert tactcad.load(EXAMPLE_DESIGN).element(np.int64(3)).number == 3
+
+
+def test_an_api_refusal_names_the_keyword_argument_not_the_commands_option(tmp_path):
+    project = tactcad.load(EXAMPLE_DESIGN)
+    with pytest.raises(DesignError) as err:
+        project.export(tmp_path / "x", only="dxff")
+    assert err.value.field == "only" and "--only" not in str(err.value)
+
+
+def test_option_names_in_a_refusals_words_become_keyword_arguments():
+    from tactcad.api import with_keyword_names
+    from tactcad.errors import ExportPathError
+
+    exc = DesignError("--force-N", 9.0, "0 ... 2 N", "paste --force-N 1.5 or --angle-deg 4",
+                      alternatives=[{"option": "--slab-thickness-mm 2", "words": "thinner"}])
+    named = with_keyword_names(exc, ["force_N", "angle_deg", "slab_thickness_mm"])
+    assert named.field == "force_N" and named.why == "paste force_N=1.5 or angle_deg=4"
+    assert named.alternatives == [{"option": "slab_thickness_mm=2", "words": "thinner"}]
+    both = with_keyword_names(DesignErrors([exc, DesignError("--kobj", -1, "> 0 N/mm")]),
+                              ["force_N", "kobj"])
+    assert [e.field for e in both.errors] == ["force_N", "kobj"]
+    path = with_keyword_names(ExportPathError("--out a/b.toml: a file"), ["out"])
+    assert type(path) is ExportPathError and str(path) == "out=a/b.toml: a file"
+    other = DesignError("--design", "x", "a file")  # no keyword of the call: left as it is
+    assert with_keyword_names(other, ["out"]) is other

@@ -48,6 +48,26 @@ def test_a_die_project_runs_the_die_views_the_cli_runs(die_folder):
     grasp = json.loads(run_cli("grasp", "--force-N", "1", "--json", cwd=die_folder).stdout)
     mine = die.grasp(force_N=1)
     assert mine["grasp"]["tips"] == grasp["grasp"]["tips"]
-    assert die.crosstalk()["beams"] == [b.number for b in die.plan.beams]
+    crosstalk = die.crosstalk()
+    assert crosstalk["beams"] == [b.number for b in die.plan.beams]
+    # plain Python throughout: the same JSON the command prints (but its run's own time
+    # and the design's path as given)
+    printed = json.loads(run_cli("crosstalk", "--json", cwd=die_folder).stdout)
+    mine = json.loads(json.dumps(crosstalk))
+    same = set(mine) & set(printed) - {"cost_s", "design"}
+    assert "beams" in same and {k: mine[k] for k in same} == {k: printed[k] for k in same}
+    assert json.loads(json.dumps(die.grasp(force_N=1)))["grasp"]["tips"] == grasp["grasp"]["tips"]
     thermal = json.loads(run_cli("thermal", "--json", cwd=die_folder).stdout)
     assert die.thermal()["self_heating_K"] == thermal["self_heating_K"]
+
+
+def test_a_die_projects_refusals_name_its_keyword_arguments(die_folder):
+    import tactcad
+    from tactcad.errors import DesignError
+
+    die = tactcad.load(die_folder / EXAMPLE.name)
+    for kwargs, field in ((dict(kobj=-1), "kobj"), (dict(force_N=1e3), "force_N"),
+                          (dict(force_N=1.0, angle_deg=3.0), "force_N / angle_deg")):
+        with pytest.raises(DesignError) as err:
+            die.grasp(**kwargs)
+        assert err.value.field == field and "--" not in str(err.value), str(err.value)

@@ -151,12 +151,12 @@ def test_minus_zero_is_never_printed(capsys):
     assert "-0.0" not in capsys.readouterr().out
 
 
-def test_a_one_column_design_is_not_told_to_use_fewer_columns(capsys):
-    code = cli.main(["scenes", "--set", "array.columns=1", "--set", "arms.lengths_mm=[4,5]",
+def test_a_design_of_the_fewest_columns_is_not_told_to_use_fewer_columns(capsys):
+    code = cli.main(["scenes", "--set", "array.columns=2", "--set", "arms.lengths_mm=[4,5,4,5]",
                      "--set", "clamp.plate_thickness_mm=10", "--set", "sheet.thickness_mm=10",
                      "--set", "array.pitch_mm=12"])
     err = capsys.readouterr().err
-    assert code == 2 and "array.columns = 1: allowed a larger bolt than M2" in err
+    assert code == 2 and "array.columns = 2: allowed a larger bolt than M2" in err
     assert "fewer columns" not in err
 
 

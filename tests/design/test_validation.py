@@ -128,7 +128,6 @@ def test_bad_scenes_are_refused_up_front(tmp_path, edit, field):
 
 
 @pytest.mark.parametrize("overrides", [
-    {"array.columns": 1, "arms.lengths_mm": [4.0, 7.0]},
     {"array.columns": 2, "arms.lengths_mm": [4.0, 7.0, 6.0, 8.0]},
     {"arms.lengths_mm": [4.0] * 10},
     {"element.tip_width_mm": 3.0},
@@ -203,11 +202,11 @@ def test_part_names_are_file_safe(design_data):
     # a 4 mm arm over a 0.9 mm arm height: a/h = 4.4, beyond the correction's fit (<= 4)
     ({"array.pitch_mm": 3.2, "element.arm_height_mm": 0.9, "clamp.bolt_size": "M2.5",
       "clamp.bolt_spacing_mm": 5.98, "element.tip_width_mm": 2.0}, True),
-    ({"array.columns": 1, "arms.lengths_mm": [4.0, 7.0]}, False),
+    ({"array.columns": 2, "arms.lengths_mm": [4.0, 7.0, 4.0, 7.0]}, False),
 ])
 def test_designs_at_their_limits_export_and_check(design_data, tmp_path, overrides, outside_fit):
     """pitch, arm height and bolt spacing at their lowest accepted values with M2.5
-    bolts, and a one-column array (no spacer part): the array exports and passes
+    bolts, and a two-column array (the fewest a stacked array takes): the array exports and passes
     its checks (STEP solids and labels included); a design beyond the stiffness
     correction's fitted range is exported with that said."""
     import warnings
@@ -287,3 +286,59 @@ def test_a_pitch_no_tip_fits_is_refused_as_the_pitch_alone(tmp_path):
     assert "tip_width_mm" not in proc.stderr and "<= -" not in proc.stderr
     near = _cli("scenes", "--design", str(_project_dir(tmp_path)), "--set", "array.pitch_mm=2.0")
     assert "element.tip_width_mm" in near.stderr  # a pitch a narrower tip fits: still named
+
+
+# --- a design that can read K_obj: two columns a row, a reference stiffer than its row ------
+TI_EXAMPLE = Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+
+
+def test_a_stacked_array_of_one_column_is_refused_with_the_range_design_help_gives(capsys):
+    import tactcad
+    from tactcad import cli
+    from tactcad.design.array_plan import STACKED_COLUMNS_RANGE
+
+    lo, hi = STACKED_COLUMNS_RANGE
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(TI_EXAMPLE, set={"array.columns": lo - 1, "arms.lengths_mm": [4.0, 7.0]})
+    assert err.value.field == "array.columns" and err.value.value == lo - 1
+    assert err.value.allowed == f"{lo} ... {hi} for a stacked array"
+    assert "no element left to measure" in err.value.why
+    with pytest.raises(SystemExit):
+        cli.main(["design", "--help"])
+    helped = " ".join(capsys.readouterr().out.split())
+    assert f"{lo} ... {hi} for a stacked array" in helped
+    # the fewest is taken
+    tactcad.load(TI_EXAMPLE, set={"array.columns": lo, "arms.lengths_mm": [19.6, 6.196] * lo})
+
+
+def test_a_named_reference_softer_than_its_row_is_refused_with_the_stiffnesses():
+    import tactcad
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+
+    k = ladder_stiffness_by_element(plan_from_dict(read_toml(TI_EXAMPLE, "design")))
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(TI_EXAMPLE, set={"arms.reference_elements": [2, 4]})  # 4 is row 2's soft
+    (refused,) = err.value.errors
+    assert refused.field == "arms.reference_elements[2]" and refused.value == 4
+    assert "K_r > K_m" in refused.allowed and "eq. 2-3" in refused.why
+    assert f"element 4 has K = {k[4]:.4g} N/mm" in refused.allowed
+    assert f"element 5 {k[5]:.4g} N/mm" in refused.allowed and k[5] > k[4]
+    assert "the stiffest of its row is element 5" in refused.allowed
+    assert tactcad.load(TI_EXAMPLE, set={"arms.reference_elements": [2, 5]}).plan.references \
+        == (2, 5)
+
+
+def test_a_soft_reference_is_refused_by_the_commands_that_read_the_design(tmp_path):
+    import shutil
+
+    text = TI_EXAMPLE.read_text(encoding="utf-8")
+    design = tmp_path / "soft_ref.toml"
+    for companion in ("rigs.toml", "scenes.toml"):
+        shutil.copy(TI_EXAMPLE.parent / companion, tmp_path / companion)
+    design.write_text(text.replace("[arms]", "[arms]\nreference_elements = [2, 4]", 1),
+                      encoding="utf-8")
+    for command in ("evaluate", "grasp"):
+        r = run_cli(command, "--design", str(design))
+        assert r.returncode == 2, (command, r.stdout[-300:])
+        assert "arms.reference_elements[2] = 4" in r.stderr and "K_r > K_m" in r.stderr
+        assert "Traceback" not in r.stderr

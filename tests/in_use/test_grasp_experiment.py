@@ -154,3 +154,75 @@ def test_under_a_wedge_each_unit_is_judged_on_its_own_thickness_with_one_modulus
         p = np.linalg.solve(c + np.diag([1 / kr, 1 / km]), [d, d])
         r_alone = (p[1] / km) / (p[0] / kr)
         assert u["R_read"] == pytest.approx(r_alone, rel=0.01)
+
+
+def test_the_correction_takes_out_each_tips_travel_and_tissue():
+    """Eq. 1 per tip, each on its own tissue K_0 / s (a wedge: the thinner tissue is
+    stiffer) and its own travel: the corrected K_obj is the two tips' geometric mean
+    exactly, the travel alone (eq. 3 on R Δ_r / Δ_m) misses it."""
+    from tactcad.in_use.grasp_experiment import TipSolution, Tips, unit_reading
+
+    k0, k_r, k_m = 3.0, 24.0, 3.0
+    s = np.array([0.4, 0.75])  # the reference on the thinner tissue
+    travel = np.array([0.006, 0.012])
+    k_tissue = k0 / s
+    deflection = travel * k_tissue / (np.array([k_r, k_m]) + k_tissue)  # eq. 1 per tip
+    force = np.array([k_r, k_m]) * deflection
+    sol = TipSolution(travel, deflection, force, force, np.zeros(2), np.zeros(2, bool),
+                      np.ones(2, bool))
+    tips = Tips((1, 2), np.array([6.0, 12.0]), [Punch(0, 0, 1, 1), Punch(6, 0, 1, 1)],
+                np.array([k_r, k_m]), np.full(2, np.inf), np.full(2, np.inf))
+    u = unit_reading(1, 2, sol, tips, k_tissue, softening=s)
+    assert u["K_obj_true_N_per_mm"] == pytest.approx(k0 / np.sqrt(s.prod()), rel=1e-12)
+    assert u["error_corrected_rel"] == pytest.approx(0.0, abs=1e-9)
+    assert u["R_corrected"] == pytest.approx(u["R_true"], rel=1e-9)
+    travel_only = unit_reading(1, 2, sol, tips, k_tissue)  # one tissue assumed under both
+    assert abs(travel_only["error_corrected_rel"]) > 0.2
+
+
+def test_the_corrected_reading_along_the_rows_beats_the_read_and_says_what_it_leaves():
+    """The shipped comb's units laid one pitch apart along the rows under the wedge: each
+    reads its travel ratio and its two tips' tissue; corrected for both, the tissue's
+    coupling between neighbouring tips is left, and each layout states its size."""
+    plan = load_design(COMB)  # paired across the rows: grasp lays its units along them too
+    k = ladder_stiffness_by_element(plan)
+    units = [(r.number, m.number)
+             for r, m in row_units(plan, {s.geometry.part_name: k[s.number] for s in plan.slots})]
+    g = grasp(plan, JAW, k, units, 1.0, 1.0, force_N=0.3, coupling="layer", profile="wedge")
+    apart = g.along_rows.units
+    assert apart and all(u["valid"] and u["radius_ratio"] > 1.02 for u in apart)
+    for u in apart:
+        assert abs(u["error_corrected_rel"]) < abs(u["error_rel"]) / 3, u["unit"]
+        assert not u["correction_worse"]
+    left = g.along_rows.correction_residual
+    worst = max(apart, key=lambda u: abs(u["error_corrected_rel"]))
+    assert left["largest_rel"] == worst["error_corrected_rel"] and left["unit"] == worst["unit"]
+    assert "coupling" in left["cause"] and not left["worse_than_read"]
+    assert g.along_rows.as_json()["correction_residual"] == left
+    # without the coupling nothing is left: the correction is exact
+    none = grasp(plan, JAW, k, units, 1.0, 1.0, force_N=0.3, coupling="none", profile="wedge")
+    assert none.along_rows.correction_residual is None
+
+
+def test_a_corrected_reading_further_off_than_read_is_named():
+    """The comb paired along its rows presses twelve tips into one tissue: the coupling the
+    correction leaves can exceed the error it takes out, and the layout names those units."""
+    plan, k, units = setup(COMB)
+    g = grasp(plan, JAW, k, units, 1.0, 1.0, force_N=0.3, coupling="layer", profile="wedge")
+    worse = [u["unit"] for u in g.as_laid_out.units
+             if abs(u["error_corrected_rel"]) > abs(u["error_rel"])]
+    left = g.as_laid_out.correction_residual
+    assert worse and left["worse_than_read"] == worse
+    assert all(u["correction_worse"] == (u["unit"] in worse) for u in g.as_laid_out.units)
+
+
+def test_a_correction_that_leaves_a_unit_further_off_is_named():
+    from tactcad.in_use.grasp_experiment import correction_residual
+
+    base = {"valid": True, "unit": "1/2", "error_rel": 0.05, "error_corrected_rel": 0.3,
+            "correction_worse": True}
+    better = {**base, "unit": "3/4", "error_rel": -0.4, "error_corrected_rel": 0.1,
+              "correction_worse": False}
+    left = correction_residual([base, better], "layer")
+    assert left["worse_than_read"] == ["1/2"] and left["range_rel"] == [0.1, 0.3]
+    assert correction_residual([{**better, "error_corrected_rel": 1e-12}], "layer") is None

@@ -99,10 +99,13 @@ def test_a_single_column_has_nothing_to_lay_along_its_rows():
     from tactcad.design.array_plan import plan_from_dict, read_toml
     from tactcad.in_use.radius_pairs import along_row_layout
 
-    d = read_toml(DESIGNS[1], "design file")
-    d["array"]["columns"] = 1
-    d["arms"]["lengths_mm"] = d["arms"]["lengths_mm"][:1] + d["arms"]["lengths_mm"][3:4]
-    d["arms"]["reference_elements"] = [1, 2]
+    d = read_toml(DESIGNS[0], "design file")  # a comb: a stacked array has two columns or more
+    columns = d["array"]["columns"]
+    d["array"]["columns"], d["array"]["pitch_mm"] = 1, 16.0  # a row long enough to clamp
+    for table, key in (("arms", "lengths_mm"), ("comb", "web_thicknesses_mm"),
+                       ("comb", "stop_gaps_mm")):
+        d[table][key] = d[table][key][:1] + d[table][key][columns:columns + 1]
+    d["arms"]["reference_elements"] = [1]
     plan = plan_from_dict(d)
     layout = along_row_layout(plan, [(1, 2)])
     assert layout.sites == () and layout.unplaced == ((1, 2),)

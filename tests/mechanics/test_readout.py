@@ -242,7 +242,7 @@ def test_readout_piped_into_a_reader_that_stops_early_is_no_error():
 
 
 def test_a_smaller_variant_of_the_papers_design_compares_only_its_table1_elements(capsys):
-    argv = ["readout", "--json", "--set", "array.columns=1", "--set", "arms.lengths_mm=[4,5]"]
+    argv = ["readout", "--json", "--set", "array.columns=2", "--set", "arms.lengths_mm=[4,5,4,5]"]
     assert main(argv) == 0
     out = json.loads(capsys.readouterr().out)
     recs = {r["element"]: r for r in out["elements"]}

@@ -200,15 +200,15 @@ def test_a_small_full_scale_force_writes_the_resolution_its_chain_reaches(tmp_pa
 
 
 def test_a_design_that_reads_no_kobj_is_not_judged_on_kobj_targets_it_never_stated():
-    """One column: each row is its own reference, no K_obj is read (eq. 3 needs a
-    pair), so no K_obj target is derived and verify has none to fail; a K_obj
-    target the file states still fails, the design cannot read it."""
+    """Each row's two elements alike: no element softer than its reference, no K_obj is
+    read (eq. 3 needs a pair), so no K_obj target is derived and verify has none to fail;
+    a K_obj target the file states still fails, the design cannot read it."""
     keys = ("kobj_range_N_per_mm", "kobj_resolution_rel")
-    plan = example(drop_requirements=keys, **{"array.columns": 1, "arms.lengths_mm": [5.0, 6.0]})
+    alike = {"array.columns": 2, "arms.lengths_mm": [5.0, 5.0, 6.0, 6.0]}
+    plan = example(drop_requirements=keys, **alike)
     judged = {r["requirement"] for r in verification_matrix(plan, "closed-form")}
     assert not judged & set(keys) and "kr_over_km" in judged
-    stated = example(drop_requirements=("kobj_resolution_rel",),
-                     **{"array.columns": 1, "arms.lengths_mm": [5.0, 6.0]})
+    stated = example(drop_requirements=("kobj_resolution_rel",), **alike)
     matrix = verification_matrix(stated, "closed-form")
     assert record(matrix, "kobj_range_N_per_mm")["pass"] is False
 

@@ -19,6 +19,11 @@ class CheckResult:
     detail: str = ""
     undecided: bool = False
 
+    def __post_init__(self):
+        # a verdict computed with NumPy (np.True_) is a bool here: JSON and `is True` take it
+        object.__setattr__(self, "passed", bool(self.passed))
+        object.__setattr__(self, "undecided", bool(self.undecided))
+
     @property
     def status(self) -> str:
         """``pass``, ``fail`` or ``undecided``."""

@@ -17,14 +17,9 @@ from tactcad.commands.options import count, material_grade_name, number
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
                                                  MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
-from tactcad.design.array_plan import COLUMNS_RANGE
+from tactcad.design.array_plan import (COLUMNS_RANGE, MIN_PAIRED_COLUMNS, STACKED_COLUMNS_RANGE,
+                                       STACKED_COLUMNS_WHY)
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
-
-
-
-#: Fewest columns where each row (a stacked array paired by row) or the die pairs a
-#: reference with an element of its own that measures.
-MIN_PAIRED_COLUMNS = 2
 
 
 def check_columns(columns: int, allowed: tuple[int, int], what: str, why: str) -> None:
@@ -49,10 +44,6 @@ def check_columns(columns: int, allowed: tuple[int, int], what: str, why: str) -
                                      "words": f"the nearest count {what} takes"}])
 
 
-#: Why a stacked array's columns are what they are (the grid's range, and a pair per row).
-STACKED_COLUMNS_WHY = ("each row pairs its reference with the row's other elements, so a row "
-                       "of one column has no element left to measure; the most is the grid's "
-                       "(array.columns)")
 
 
 #: Decimal places a written design keeps of a length (mm): 1 nm, far below any tolerance,
@@ -193,8 +184,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     p.add_argument("--columns", type=count(1, max(COLUMNS_RANGE[1], DIE_COLUMNS[1]), "columns"),
                    metavar="N", default=None,
-                   help=f"columns of the new grid (2 rows x N): {MIN_PAIRED_COLUMNS} ... "
-                        f"{COLUMNS_RANGE[1]} for a stacked array, {COLUMNS_RANGE[0]} ... "
+                   help=f"columns of the new grid (2 rows x N): {STACKED_COLUMNS_RANGE[0]} ... "
+                        f"{STACKED_COLUMNS_RANGE[1]} for a stacked array, {COLUMNS_RANGE[0]} ... "
                         f"{COLUMNS_RANGE[1]} for a comb, {DIE_COLUMNS[0]} ... {DIE_COLUMNS[1]} "
                         "for a silicon die; default: the base design's")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
@@ -370,7 +361,7 @@ def _run(args: argparse.Namespace) -> int:
     check_design_name(args.out, folder, path)
     if folder is not None:  # an existing project is refused now, not after the search
         check_project_target(folder, path.name, args.force)
-    stacked = (MIN_PAIRED_COLUMNS, COLUMNS_RANGE[1])
+    stacked = STACKED_COLUMNS_RANGE  # the design file's own range (array.columns)
     if args.columns is not None:
         check_columns(args.columns, stacked, "a stacked array", STACKED_COLUMNS_WHY)
     data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design",

@@ -107,14 +107,17 @@ def register(sub: argparse._SubParsersAction) -> None:
 def design_plan_from_args(args: argparse.Namespace):
     """The plan of ``--design`` with every ``--set``: the design file alone, since the grasp
     needs neither the test rigs nor the scenes (a construction the rigs cannot hold yet is
-    still grasped).
+    still grasped); a named reference no stiffer than its measuring elements refused
+    (:func:`tactcad.api.check_references_stiffer`).
 
     Raises:
-        DesignError: unreadable file, bad ``--set``, a value out of range.
+        DesignError: unreadable file, bad ``--set``, a value out of range, a stacked array
+            of one column, a soft reference.
     """
     from pathlib import Path
 
-    from tactcad.design.array_plan import plan_from_dict, with_overrides
+    from tactcad.api import check_references_stiffer
+    from tactcad.design.array_plan import plan_from_dict, stacked_columns_error, with_overrides
     from tactcad.design.file_kind import read_array_tables
     from tactcad.errors import DesignErrors
     from tactcad.commands import announced_default_design
@@ -122,8 +125,13 @@ def design_plan_from_args(args: argparse.Namespace):
     path = Path(args.design) if getattr(args, "design", None) else announced_default_design()
     texts = getattr(args, "overrides", None) or []
     data = with_overrides(read_array_tables(path), parse_overrides(texts))
+    too_few = stacked_columns_error(data, path.name)
     try:
-        return plan_from_dict(data, source=str(path), file=path.name)
+        if too_few is not None:
+            raise DesignErrors([too_few])
+        plan = plan_from_dict(data, source=str(path), file=path.name)
+        check_references_stiffer(plan)  # a unit that cannot read K_obj is no grasp's
+        return plan
     except DesignErrors as exc:  # a refused --set value is named as typed
         from tactcad.commands import set_sources
 
@@ -289,11 +297,36 @@ def unit_table(layout: dict) -> list[str]:
     return lines
 
 
+def residual_line(layout: dict) -> str | None:
+    """The line that says what the correction leaves in a layout's readings.
+
+    Args:
+        layout: one layout's JSON (:meth:`tactcad.in_use.grasp_experiment.LayoutGrasp.as_json`).
+
+    Returns:
+        Its ``correction_residual`` in words: the range and largest error, the unit, the
+        cause and the units read further off corrected than raw; None where it leaves
+        nothing.
+    """
+    left = layout.get("correction_residual")
+    if not left:
+        return None
+    lo, hi = left["range_rel"]
+    worse = left["worse_than_read"]
+    return (f"{layout['layout']}: the corrected K_obj is still off by {_pct(lo)} ... "
+            f"{_pct(hi)} (largest {_pct(left['largest_rel'])}, unit {left['unit']}): "
+            f"{left['cause']}"
+            + (f"; the correction leaves units {', '.join(worse)} further off than read"
+               if worse else ""))
+
+
 def unit_note(unit: dict) -> str:
     """A unit's note: why it does not read (its tips, or a true K_obj outside the design's
     range), else whether its radii are equal (within 2 %)."""
     why = "; ".join(filter(None, [unit["why"], unit.get("out_of_range")]))
-    return why or ("equal radius" if abs(unit["radius_ratio"] - 1) <= 0.02 else "radii differ")
+    radius = "equal radius" if abs(unit["radius_ratio"] - 1) <= 0.02 else "radii differ"
+    return why or radius + ("; corrected further off than read" if unit.get("correction_worse")
+                            else "")
 
 
 def render(record: dict) -> str:
@@ -328,6 +361,9 @@ def render(record: dict) -> str:
                       f"rating (reading past full scale): {', '.join(map(str, over)) or 'none'}; "
                       f"over the overload limit: {', '.join(map(str, damaged)) or 'none'}; "
                       f"on a stop: {', '.join(map(str, stops)) or 'none'}", *unit_table(lay)]
+        residual = residual_line(lay)
+        if residual:
+            lines.append(residual)
     for key, words in (("paired_layout", "paired layout"),
                        ("along_rows_layout", "along the rows")):
         pl = record.get(key)

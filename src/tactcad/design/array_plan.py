@@ -84,8 +84,21 @@ MIN_BASE_BELOW_ARM_MM = 2.0
 #: Most columns of a grid: the one range of ``array.columns`` and of ``design --columns``
 #: (an element count the closed form and the drawings have been checked over).
 MAX_COLUMNS = 12
-#: The allowed range of the columns of a grid (inclusive), wherever they are asked.
+#: The allowed range of the columns of a grid (inclusive), wherever they are asked: a comb,
+#: paired across its rows, reads with one column.
 COLUMNS_RANGE = (1, MAX_COLUMNS)
+#: Fewest columns of a stacked array: each row pairs its reference with an element of its
+#: own that measures.
+MIN_PAIRED_COLUMNS = 2
+#: The allowed range of a stacked array's columns (inclusive): the one range of its design
+#: file's ``array.columns`` (:func:`stacked_columns_error`, judged where a design file is
+#: loaded; a plan built for one element's figures may have one column) and of
+#: ``design --columns``.
+STACKED_COLUMNS_RANGE = (MIN_PAIRED_COLUMNS, MAX_COLUMNS)
+#: Why a stacked array's columns are what they are (the grid's range, and a pair per row).
+STACKED_COLUMNS_WHY = ("each row pairs its reference with the row's other elements, so a row "
+                       "of one column has no element left to measure; the most is the grid's "
+                       "(array.columns)")
 #: How a sensing unit pairs its elements: "row" (each row's reference against the
 #: row's other elements) or "column" (one row of references, each against the element
 #: beside it across the rows: the two tips at one distance along the row).
@@ -614,6 +627,31 @@ def bolt_holes(d: DesignFile, leg: float) -> tuple[Hole, Hole]:
     return Hole(leg / 2 - s / 2, y, hole_d), Hole(leg / 2 + s / 2, y, hole_d)
 
 
+def stacked_columns_error(data: Mapping[str, Any], file: str = "") -> DesignError | None:
+    """The refusal of a stacked array's design file whose ``array.columns`` is outside
+    :data:`STACKED_COLUMNS_RANGE` (a row of one column has no element to measure against
+    its reference); None for another construction, a count in range, or a value the
+    schema refuses (not an integer, outside :data:`COLUMNS_RANGE`).
+
+    Args:
+        data: the design file's tables (raw: judged beside the schema's refusals).
+        file: the file's name for the message.
+
+    Returns:
+        The refusal naming ``array.columns``, its value and the range, or None.
+    """
+    from tactcad.design.construction_registry import construction_name
+
+    array = data.get("array") if isinstance(data, Mapping) else None
+    columns = array.get("columns") if isinstance(array, Mapping) else None
+    lo, hi = STACKED_COLUMNS_RANGE
+    if (construction_name(data) != DEFAULT_CONSTRUCTION or isinstance(columns, bool)
+            or not isinstance(columns, int) or not COLUMNS_RANGE[0] <= columns < lo):
+        return None
+    return DesignError("array.columns", columns, f"{lo} ... {hi} for a stacked array",
+                       STACKED_COLUMNS_WHY, file=file)
+
+
 def pairing_of(d: Any) -> str:
     """The design's unit pairing (:data:`PAIRINGS`), "row" when ``array.pairing`` is left out."""
     return d.array.pairing or "row"
@@ -700,7 +738,8 @@ def _check_bolt_length(d: DesignFile, p: Problems) -> None:
     length, why = bolt_length(d)
     bolt = BOLTS[d.clamp.bolt_size]
     if length is None:
-        fewer = "fewer columns or " if d.array.columns > 1 else ""  # one column is the fewest
+        fewer = ("fewer columns or " if d.array.columns > STACKED_COLUMNS_RANGE[0]
+                 else "")  # the fewest a stacked array takes
         p.add("array.columns", d.array.columns, f"{fewer}a larger bolt than {bolt.size}",
               f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
               f"{fmt(max(bolt.catalogue_lengths_mm))} mm")

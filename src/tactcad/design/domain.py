@@ -18,7 +18,7 @@ from typing import Any, Callable, Sequence
 from tactcad.design.array_plan import (ARM_RANGE_MM, MAX_COLUMNS, MIN_ARM_STEP_MM, MIN_BASE_BELOW_ARM_MM,
                                   MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, MIN_SPACER_MM,
                                   MIN_TIP_GAP_MM, MIN_TIP_WALL_MM, NOTCH_RADIUS_MAX_MM,
-                                  WEB_RANGE_MM, default_design_data)
+                                  STACKED_COLUMNS_RANGE, WEB_RANGE_MM, default_design_data)
 from tactcad.design.readout_section import DEFAULTS, GRID_WIDTH_RANGE_MM
 from tactcad.design.rig_plan import default_rigs_data
 from tactcad.partlib.array.element import WEB_TOLERANCE_RANGE_MM
@@ -60,11 +60,14 @@ def draw_design(pick: Pick, choose: Choose, name: str = "fuzz") -> dict[str, Any
     sheet = pick(0.5, 10.0)
     plate = pick(1.0, 10.0)
     longest = longest_grip_mm(bolt)
-    plate = min(plate, max(1.0, (longest - sheet) / 2 - 0.01))
-    sheet = min(sheet, longest - 2 * plate - 0.01)
-    pitch = pick(sheet + MIN_SPACER_MM, 20.0)
+    # the bolt holds both plates and at least the fewest columns a stacked array takes
+    # (:data:`STACKED_COLUMNS_RANGE`): two sheets a spacer apart
+    fewest = STACKED_COLUMNS_RANGE[0]
+    plate = min(plate, max(1.0, (longest - fewest * sheet - MIN_SPACER_MM) / 2 - 0.01))
+    sheet = min(sheet, (longest - 2 * plate - MIN_SPACER_MM) / fewest - 0.01)
+    pitch = pick(sheet + MIN_SPACER_MM, min(20.0, (longest - 2 * plate - sheet) / (fewest - 1)))
     max_cols = int((longest - 2 * plate - sheet) // pitch) + 1
-    columns = _count(pick, 1, max(1, min(MAX_COLUMNS, max_cols)))
+    columns = _count(pick, fewest, max(fewest, min(MAX_COLUMNS, max_cols)))
 
     wire, spark = pick(0.02, 0.35), pick(0.0, 0.1)
     r_min = wire / 2 + spark

@@ -24,7 +24,8 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping
 
-from tactcad.design.array_plan import DEFAULT_DESIGN, Plan, plan_from_model, validate_design
+from tactcad.design.array_plan import (DEFAULT_DESIGN, Plan, plan_from_model,
+                                       stacked_columns_error, validate_design)
 from tactcad.design.construction_registry import construction_of
 from tactcad.design.rig_plan import DEFAULT_RIGS, RigDesign, validate_rigs
 from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml, unprintable
@@ -165,8 +166,9 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems) 
     if design is None:
         return None
     model, found = validate_design(design, Path(source).name)
-    problems.extend(found.errors)
-    return None if found else plan_from_model(model, design, source)
+    too_few = stacked_columns_error(design, Path(source).name)  # a row must hold a pair
+    problems.extend([too_few, *found.errors] if too_few else found.errors)
+    return None if found or too_few else plan_from_model(model, design, source)
 
 
 def _companions_of(plan: Plan | None, rigs: Mapping[str, Any] | None,

@@ -20,8 +20,12 @@ Model (units mm, N, N/mm, degrees):
 * A tip with deflection e: e + w = Δ, P = K e until its hard stop engages at the tip travel
   e_s (:func:`tactcad.mechanics.hard_stops.engagement_travel_mm`); then e = e_s, the element
   carries K e_s and the stop the rest of P. Tips whose force would pull (P < 0) lift off.
-* A unit reads R = e_m / e_r and K_obj by eq. 3, and, corrected for its tips' travels,
-  R Δ_r / Δ_m (the jaw's angle known from the grasper, the slab's thickness assumed).
+* A unit reads R = e_m / e_r and K_obj by eq. 3, and corrected for its tips' travels,
+  R Δ_r / Δ_m, and, under a wedge on the layer, for each tip's own tissue (thinner tissue
+  is stiffer: :func:`corrected_kobj`), the jaw's angle known from the grasper, the tissue's
+  profile and thickness assumed. The tissue's coupling between neighbouring tips stays in
+  the corrected reading; each layout states the error it leaves
+  (:func:`correction_residual`).
 * Force mode: the angle at which the tips' forces on the slab sum to the grasp force
   (bisection; the force falls as the jaw opens).
 """
@@ -58,10 +62,10 @@ DEFAULT_PROFILE = "wedge"
 OVERLOAD_PROFILE = "slab"
 #: Tissue couplings: none (eq. 1), a half-space, a layer of the slab's thickness.
 COUPLINGS = ("none", "halfspace", "layer")
-#: What the travel correction leaves in a reading, by whether the tips are coupled.
+#: What the correction leaves in a reading, by whether the tips are coupled.
 COUPLING_LEFT_IN = ("", "; the tissue's coupling between neighbouring tips stays in it "
                         "(verify's coupled inversion and tactcad budget's tissue-coupling "
-                        "source take it out)")
+                        "source take it out): each layout states what it leaves")
 #: Poisson's ratio of soft tissue: the tissue coupling's, one figure for every command.
 TISSUE_POISSON_RATIO = TISSUE_COUPLING_POISSON_RATIO
 #: What the tissue between the jaws rests on: the opposing jaw, a rigid base holding the layer
@@ -306,17 +310,25 @@ def is_own_layout(layout: PairedLayout) -> bool:
 
 @dataclass(frozen=True)
 class LayoutGrasp:
-    """One layout's grasp: the angle, each tip's state, each unit's reading."""
+    """One layout's grasp: the angle, each tip's state, each unit's reading, and the tissue's
+    ``coupling`` (one of :data:`COUPLINGS`) it was closed on."""
 
     name: str
     angle_deg: float
     total_force_N: float
     tips: list[dict]
     units: list[dict]
+    coupling: str = "layer"
+
+    @property
+    def correction_residual(self) -> dict | None:
+        """What the correction leaves in the units' readings (:func:`correction_residual`)."""
+        return correction_residual(self.units, self.coupling)
 
     def as_json(self) -> dict:
         return {"layout": self.name, "angle_deg": self.angle_deg,
-                "total_force_N": self.total_force_N, "tips": self.tips, "units": self.units}
+                "total_force_N": self.total_force_N, "tips": self.tips, "units": self.units,
+                "correction_residual": self.correction_residual}
 
 
 #: What the tissue rests on: by coupling where it has no base, else by the layer's base.
@@ -427,20 +439,68 @@ def angle_for_force(tips: Tips, compliance: np.ndarray, slab_mm: float, opening_
     return 0.5 * (lo + hi)
 
 
+def corrected_kobj(r_read: float, travel_r_mm: float, travel_m_mm: float, k_r: float,
+                   k_m: float, softening_r: float = 1.0, softening_m: float = 1.0) -> float:
+    """K_obj a unit reads once its tips' travels and the tissue under each are taken out.
+
+    Eq. 1 per tip, each on its own tissue K_i = K_0 / s_i (one modulus; s_i the tip's
+    compliance on its own thickness over that on the slab's, :func:`local_softening`),
+    gives R = (Δ_m / Δ_r) (s_r K_r + K_0) / (s_m K_m + K_0): eq. 2 with the elements'
+    K scaled by their tissue. Eq. 3 on those scaled K and R Δ_r / Δ_m gives K_0, and the
+    unit's K_obj is its two tips' geometric mean, K_0 / sqrt(s_r s_m). The travel ratio
+    alone (s_r = s_m) is the paper's eq. 3 on R Δ_r / Δ_m; a tip on thinner tissue reads
+    stiffer tissue, which eq. 3 on one K_obj puts into R (paper eq. 1-3,
+    :mod:`tactcad.mechanics.lumped_model`).
+
+    Args:
+        r_read: R = e_m / e_r as read.
+        travel_r_mm, travel_m_mm: the reference's and the measuring tip's travel (mm), > 0.
+        k_r, k_m: the elements' stiffness (N/mm).
+        softening_r, softening_m: each tip's tissue softening s (dimensionless, > 0; 1 on
+            the slab's thickness).
+
+    Returns:
+        K_obj (N/mm); inf where the corrected R is 1 (no answer).
+    """
+    ratio = r_read * travel_r_mm / travel_m_mm
+    if ratio == 1:
+        return math.inf
+    k0 = float(kobj_from_deflections(ratio, 1.0, softening_m * k_m, softening_r * k_r))
+    return k0 / math.sqrt(softening_r * softening_m)
+
+
+def ratio_of_kobj(k_r: float, k_m: float, k_obj: float) -> float:
+    """Eq. 2, R = (K_r + K_obj) / (K_m + K_obj), for any K_obj eq. 3 may give back (N/mm):
+    1 at an infinite K_obj, inf at K_obj = -K_m."""
+    if math.isinf(k_obj):
+        return 1.0
+    return (k_r + k_obj) / (k_m + k_obj) if k_obj != -k_m else math.inf
+
+
 def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj,
-                 unit: tuple[int, int] | None = None, thickness_mm=None) -> dict:
+                 unit: tuple[int, int] | None = None, thickness_mm=None,
+                 softening=None) -> dict:
     """One unit's travels, deflections, R and K_obj read (eq. 3), raw and corrected for its
-    tips' travels, against the true K_obj; ``valid`` False with why when a tip lifted off or
-    sits on its stop. ``unit``: the design's unit laid on these sites (default the sites).
+    tips' travels and the tissue under each (:func:`corrected_kobj`), against the true
+    K_obj; ``valid`` False with why when a tip lifted off or sits on its stop. ``unit``: the
+    design's unit laid on these sites (default the sites).
 
     Args:
         k_obj: the true K_obj (N/mm): one for every tip, or per tip (shape (m,): the tissue
             under a wedge); a unit is judged against the geometric mean of its two tips'.
         thickness_mm: the tissue's thickness under each tip (mm, shape (m,)), reported.
+        softening: the tissue's softening under each tip the correction assumes (shape
+            (m,), :func:`local_softening` on the assumed profile and thickness); None: one
+            tissue under every tip.
+
+    Returns:
+        The unit's record; ``R_corrected`` is the R its tips would read at one travel on
+        one tissue of the corrected K_obj (eq. 2).
     """
     i, j = tips.labels.index(ref), tips.labels.index(meas)
     k_tips = np.broadcast_to(np.asarray(k_obj, float), (len(tips.labels),))
     k_obj = float(math.sqrt(k_tips[i] * k_tips[j]))
+    s = np.ones(len(tips.labels)) if softening is None else np.asarray(softening, float)
     k_r, k_m = float(tips.stiffness_N_per_mm[i]), float(tips.stiffness_N_per_mm[j])
     e_r, e_m = float(sol.deflection_mm[i]), float(sol.deflection_mm[j])
     d_r, d_m = float(sol.travel_mm[i]), float(sol.travel_mm[j])
@@ -463,14 +523,55 @@ def unit_reading(ref: int, meas: int, sol: TipSolution, tips: Tips, k_obj,
     if e_r <= 0 or d_m <= 0:
         return {**out, "R_read": None, "K_obj_read_N_per_mm": None, "error_rel": None,
                 "R_corrected": None, "K_obj_corrected_N_per_mm": None,
-                "error_corrected_rel": None}
+                "error_corrected_rel": None, "correction_worse": False}
     r_read = e_m / e_r
-    r_corr = r_read * d_r / d_m
     k_read = float(kobj_from_deflections(r_read, 1.0, k_m, k_r)) if r_read != 1 else math.inf
-    k_corr = float(kobj_from_deflections(r_corr, 1.0, k_m, k_r)) if r_corr != 1 else math.inf
+    k_corr = corrected_kobj(r_read, d_r, d_m, k_r, k_m, float(s[i]), float(s[j]))
+    r_corr = ratio_of_kobj(k_r, k_m, k_corr)
+    error, error_corr = k_read / k_obj - 1, k_corr / k_obj - 1
     return {**out, "R_read": r_read, "K_obj_read_N_per_mm": k_read,
-            "error_rel": k_read / k_obj - 1, "R_corrected": r_corr,
-            "K_obj_corrected_N_per_mm": k_corr, "error_corrected_rel": k_corr / k_obj - 1}
+            "error_rel": error, "R_corrected": r_corr,
+            "K_obj_corrected_N_per_mm": k_corr, "error_corrected_rel": error_corr,
+            # the correction leaves more error than it took out: said, never shown bare
+            "correction_worse": bool(abs(error_corr) > abs(error) + CORRECTION_RESIDUAL_TOL)}
+
+
+#: A corrected reading's error below this (relative) is the solver's round-off, not a
+#: residual the correction leaves.
+CORRECTION_RESIDUAL_TOL = 1e-6
+
+
+def correction_residual(units: list[dict], coupling: str) -> dict | None:
+    """What the correction leaves in a layout's readings: the corrected K_obj's error over
+    the units with a reading (those whose tips are in contact and off their stops).
+
+    Args:
+        units: the layout's unit records (:func:`unit_reading`).
+        coupling: the tissue's coupling (one of :data:`COUPLINGS`): what is left is its
+            coupling between neighbouring tips, which the correction does not model.
+
+    Returns:
+        ``{"largest_rel", "unit", "range_rel", "worse_than_read", "cause"}`` (the error of
+        largest size, its unit, the least and largest error, the units the correction leaves
+        worse than read), or None where every corrected reading is within
+        :data:`CORRECTION_RESIDUAL_TOL`.
+    """
+    read = [u for u in units if u["valid"] and u["error_corrected_rel"] is not None
+            and math.isfinite(u["error_corrected_rel"])]
+    if not read:
+        return None
+    worst = max(read, key=lambda u: abs(u["error_corrected_rel"]))
+    if abs(worst["error_corrected_rel"]) <= CORRECTION_RESIDUAL_TOL:
+        return None
+    errors = [u["error_corrected_rel"] for u in read]
+    cause = ("the tissue's coupling between neighbouring tips, which the correction for the "
+             "travels and the tissue under each tip does not model (verify's coupled "
+             "inversion and tactcad budget's tissue-coupling source take it out)"
+             if coupling != "none" else "the tips' contact (stops, lift-off)")
+    return {"largest_rel": float(worst["error_corrected_rel"]), "unit": worst["unit"],
+            "range_rel": [float(min(errors)), float(max(errors))],
+            "worse_than_read": [u["unit"] for u in read if u["correction_worse"]],
+            "cause": cause}
 
 
 #: The tissue's compression under a tip past which the linear model no longer describes it
@@ -557,10 +658,11 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
     local = thickness if profile != "slab" and coupling == "layer" else None
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
                           local_thickness_mm=local, base=base)
-    # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher
-    k_local = (np.full(len(tips.labels), k_obj) if local is None else
-               k_obj / local_softening(tips.punches, jaw.slab_thickness_mm, local,
-                                       base=base))
+    # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher; the
+    # correction assumes the same profile and thickness (a lab's assumption, stated)
+    softening = (np.ones(len(tips.labels)) if local is None else
+                 local_softening(tips.punches, jaw.slab_thickness_mm, local, base=base))
+    k_local = k_obj / softening
     if angle_deg is None:
         angle_deg = angle_for_force(tips, c, jaw.slab_thickness_mm, jaw.opening_angle_deg,
                                     float(force_N), profile)
@@ -569,8 +671,26 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
     return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()),
                        tip_records(tips, sol, rated_force_N, thickness),
                        [unit_reading(u[0], u[1], sol, tips, k_local, u[2] if len(u) > 2 else u[:2],
-                                     thickness)
-                        for u in units])
+                                     thickness, softening)
+                        for u in units], coupling)
+
+
+def correction_words(coupling: str, profile: str) -> str:
+    """How the grasp corrects a unit's reading, in words (:func:`corrected_kobj`).
+
+    Args:
+        coupling: one of :data:`COUPLINGS`; profile: one of :data:`PROFILES`.
+
+    Returns:
+        The correction and the assumptions it rests on; what it leaves where the tips are
+        coupled (:data:`COUPLING_LEFT_IN`).
+    """
+    tissue = (" and each tip's own tissue (thinner tissue under the wedge is stiffer: eq. 3 "
+              "with K_r and K_m scaled by their tips' tissue compliance, K_obj the two tips' "
+              "geometric mean)" if coupling == "layer" and profile == "wedge" else "")
+    return (f"K_obj corrected = eq. 3 on R read x travel_r / travel_m{tissue} (the jaw's "
+            f"angle known, the tissue's {profile} and thickness assumed)"
+            + COUPLING_LEFT_IN[coupling != "none"])
 
 
 def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list[tuple[int, int]],
@@ -640,8 +760,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
                                   "its tips' (the geometric mean)"
                                   if profile == "wedge" and coupling == "layer" else ""),
              "base": base_words(coupling, tissue_base),
-             "correction": "R corrected = R read x travel_r / travel_m (the jaw's angle and "
-                           "the slab's thickness known)" + COUPLING_LEFT_IN[coupling != "none"],
+             "correction": correction_words(coupling, profile),
              "paired_units": "each paired unit is the design unit named, laid on the two "
                              "sites across the jaw"}
     along_rows = None

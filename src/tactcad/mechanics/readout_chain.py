@@ -545,6 +545,51 @@ def row_units(plan: Plan, k: dict[str, float]) -> list[tuple]:
     return out
 
 
+def soft_reference_errors(plan: Plan, k: dict[int, float]) -> list:
+    """The references a design file names that are not stiffer than every element read
+    against them (:meth:`Plan.reference_for`): such a unit cannot read K_obj, since eq. 2,
+    R = (K_r + K_obj) / (K_m + K_obj), spans 1 ... K_r / K_m and eq. 3 inverts it only for
+    K_r > K_m (paper eq. 2-3, :mod:`tactcad.mechanics.lumped_model`). References the file
+    leaves out are each row's stiffest and are not judged here.
+
+    Args:
+        plan: the design.
+        k: element number -> K (N/mm), e.g.
+            :func:`tactcad.mechanics.evaluation.ladder_stiffness_by_element`.
+
+    Returns:
+        One :class:`~tactcad.errors.DesignError` per named reference refused, naming
+        ``arms.reference_elements[i]``, the reference, its K and the K of each element
+        no softer than it; empty when every named reference is the stiffer.
+    """
+    from pathlib import Path
+
+    from tactcad.errors import DesignError
+
+    named = (plan.raw.get("arms") or {}).get("reference_elements")
+    if not named:
+        return []
+    errors = []
+    for i, ref in enumerate(plan.references):
+        against = [s.number for s in plan.slots
+                   if s.number != ref and plan.reference_for(s).number == ref]
+        stiffer = [n for n in against if k[n] >= k[ref] * (1 - 1e-9)]
+        if not stiffer:
+            continue
+        stiffest = max(against + [ref], key=lambda n: (k[n], -n))
+        where = "column" if plan.pairing == "column" else "row"
+        errors.append(DesignError(
+            f"arms.reference_elements[{i + 1}]", ref,
+            f"an element stiffer than every element read against it (K_r > K_m): element "
+            f"{ref} has K = {k[ref]:.4g} N/mm, "
+            + ", ".join(f"element {n} {k[n]:.4g} N/mm" for n in stiffer)
+            + f"; the stiffest of its {where} is element {stiffest} ({k[stiffest]:.4g} N/mm)",
+            "the method reads K_obj from R = (K_r + K_obj) / (K_m + K_obj) (eq. 2-3), which "
+            "needs the reference stiffer than its measuring elements; no softer element "
+            "measures against it", file=Path(plan.source).name))
+    return errors
+
+
 def force_resolution_N(chain: ReadoutChain, grid_strain_per_N: float,
                        reading_noise_V: float | None = None) -> float:
     """Force resolution (N, 1 sigma): the noise of one averaged reading over the

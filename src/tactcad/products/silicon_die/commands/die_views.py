@@ -362,6 +362,11 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
               f"the tissue beside posts: {', '.join(str(t['site']) for t in face) or 'none'} "
               f"(posts {1e3 * record['post_proud_mm']:.3g} um proud)",
               f"error: {record['reasons']['error']}"]
+    left = result.correction_residual
+    if left:  # what the correction leaves, with its size (never a bare corrected column)
+        lo, hi = left["range_rel"]
+        lines.append(f"the corrected K_obj is still off by {pct(lo)} ... {pct(hi)} (largest "
+                     f"{pct(left['largest_rel'])}, unit {left['unit']}): {left['cause']}")
     if crushed:
         from tactcad.in_use.grasp_experiment import LINEAR_TISSUE_STRAIN
 
