@@ -148,7 +148,7 @@ def keyword_errors(method: Method) -> Method:
     import functools
     import inspect
 
-    from tactcad.errors import TactcadError
+    from tactcad.errors import COMMAND_LINE_RUN, TactcadError
 
     keywords = [k for k in inspect.signature(method).parameters if k != "self"]
 
@@ -157,6 +157,8 @@ def keyword_errors(method: Method) -> Method:
         try:
             return plain(method(*args, **kwargs))
         except TactcadError as exc:
+            if COMMAND_LINE_RUN.get():  # a command's refusal names its options
+                raise
             renamed = with_keyword_names(exc, keywords)
             if renamed is exc:
                 raise
@@ -554,9 +556,11 @@ class Project:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
                 state = reuse_state(self.plan, folder)
-                refusal, edited = state.refusal, state.edited
+                refusal = state.refusal
+                edited: dict[str, str] | None = state.edited
                 if refusal is None:
-                    report(f"checking the export in {folder} as it is ({_edits_said(edited)})")
+                    report(f"checking the export in {folder} as it is "
+                           f"({_edits_said(state.edited)})")
                 elif scenes:
                     report(f"exporting the scenes to {folder} first: {refusal}")
                     export_scenes(self.validated, folder, scenes, log=_quiet, store=_store(cache),

@@ -301,6 +301,19 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
 def dispatch(argv: list[str], as_json: bool) -> int:
     """Parse, check every option (:mod:`tactcad.commands.options`), run; every
     error a user can act on becomes one line (or the JSON error) and its exit code."""
+    from tactcad.errors import COMMAND_LINE_RUN
+
+    # refusals say the command's options (tactcad.api.keyword_errors); an API call after
+    # this run in the same process (a test, a notebook) names its keywords again
+    running = COMMAND_LINE_RUN.set(True)
+    try:
+        return _dispatched(argv, as_json)
+    finally:
+        COMMAND_LINE_RUN.reset(running)
+
+
+def _dispatched(argv: list[str], as_json: bool) -> int:
+    """:func:`dispatch`'s work, while :data:`tactcad.errors.COMMAND_LINE_RUN` is set."""
     try:
         from tactcad.drawings.frame import epoch_date
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from contextvars import ContextVar
+
 from pathlib import PurePath
 from typing import Iterable, Mapping
 
@@ -127,6 +129,12 @@ class CheckFailure(TactcadError):
 class RepeatedOptionWarning(UserWarning):
     """An option of one value given more than once: the last is taken, as argparse does
     (a pasted alternative appended to the command line replaces the value before it)."""
+
+
+#: True while a command of the command line runs (:func:`tactcad.cli.dispatch`): the API's
+#: methods it calls keep their refusals in the command's option names, not their keyword
+#: arguments' (:func:`tactcad.api.keyword_errors`).
+COMMAND_LINE_RUN: "ContextVar[bool]" = ContextVar("tactcad_command_line_run", default=False)
 
 
 class PastRatingWarning(UserWarning):

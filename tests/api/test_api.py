@@ -314,6 +314,21 @@ def test_an_api_refusal_names_the_keyword_argument_not_the_commands_option(tmp_p
     assert err.value.field == "only" and "--only" not in str(err.value)
 
 
+def test_a_command_keeps_its_option_names_and_the_api_after_it_its_keywords(tmp_path, capsys):
+    # the command runs the API's method: its refusal names --out, as the command's help does
+    from tactcad.cli import main
+
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder", encoding="utf-8")
+    assert main(["check", "--design", str(EXAMPLE_DESIGN), "--out", str(blocker / "x"),
+                 "--json"]) == 2
+    assert json.loads(capsys.readouterr().out)["error"]["message"].startswith("--out ")
+    project = tactcad.load(EXAMPLE_DESIGN)
+    with pytest.raises(DesignError) as err:
+        project.export(tmp_path / "y", only="dxff")
+    assert err.value.field == "only"
+
+
 def test_option_names_in_a_refusals_words_become_keyword_arguments():
     from tactcad.api import with_keyword_names
     from tactcad.errors import ExportPathError

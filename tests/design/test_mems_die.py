@@ -970,7 +970,7 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
 
 
 @pytest.mark.slow  # a die's whole export, then its read-back
-def test_a_die_folders_export_passes_its_check_and_a_missing_file_is_made_again(tmp_path):
+def test_a_die_folders_export_passes_its_check_and_a_removed_file_fails_it(tmp_path):
     r = run_cli("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                 "--full-scale-force", "0.009", "--out", str(tmp_path / "insert"))
     assert r.returncode == 0, r.stderr
@@ -984,9 +984,16 @@ def test_a_die_folders_export_passes_its_check_and_a_missing_file_is_made_again(
     report = (folder / "report.xml").read_text(encoding="utf-8")  # a lab's CI reads it
     assert 'failures="0"' in report and "gds_drc" in report
     (folder / "exports" / "insert_drawing.svg").unlink()
-    # a folder missing a file is exported there again, not judged half
+    # a file removed by hand since the export fails the check by name; export writes it again
     again = run_cli("check", "--out", "exports", "--json", cwd=folder)
-    assert again.returncode == 0 and (folder / "exports" / "insert_drawing.svg").is_file()
+    assert again.returncode == 1
+    failed = [c for c in json.loads(again.stdout)["checks"] if c["status"] == "fail"]
+    assert failed and all("insert_drawing.svg" in c["subject"] + c["detail"] for c in failed)
+    assert any("removed since the export" in c["detail"] for c in failed), failed
+    assert not (folder / "exports" / "insert_drawing.svg").exists()
+    assert run_cli("export", cwd=folder).returncode == 0
+    assert (folder / "exports" / "insert_drawing.svg").is_file()
+    assert run_cli("check", "--out", "exports", cwd=folder).returncode == 0
 
 
 @pytest.mark.slow  # a whole chain through the command line

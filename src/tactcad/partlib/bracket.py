@@ -110,10 +110,7 @@ def derive(br: BracketSection, context, p: Problems) -> PartData:
     bolt_len = shortest_stock_length(b, needed)
     if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
         bolt_len = max(b.catalogue_lengths_mm)
-        from tactcad.design.array_plan import STACKED_COLUMNS_RANGE
-
-        # a stacked row's fewest columns: a reference and one element to read against it
-        fewer = "fewer columns, " if plan.columns > STACKED_COLUMNS_RANGE[0] else ""
+        fewer = "fewer columns, " if plan.columns > 1 else ""  # one column is the fewest
         p.add("array.columns", plan.columns, f"{fewer}thinner clamp plates or a larger bolt "
               f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
               f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "

@@ -1402,8 +1402,8 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
             deviation = pocket_for_length_mm(tables, pitch * columns) - pitch * columns
             out.append({"words": f"length {pitch * columns:.3g} mm ({columns} columns at its "
                                  f"least pitch {pitch:g} mm) vs the pocket's "
-                                 f"{room.along_mm:.3g} mm ({keys['along']}), which holds the "
-                                 f"length with its ISO 2768-1 deviation (+/-{deviation:.3g} mm)",
+                                 f"{room.along_mm:.3g} mm ({keys['along']}), which must also hold the "
+                                 f"length's ISO 2768-1 deviation (+/-{deviation:.3g} mm)",
                         "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else ""})
     return out
 
