@@ -76,6 +76,21 @@ def test_separator_and_decimal_are_detected_and_stated(sep, decimal, said, refer
     assert fits[8].K_N_per_mm == pytest.approx(reference[8][0], abs=1e-9, rel=0)
 
 
+@pytest.mark.parametrize("sep", [",", ";", "\t"])
+def test_a_separator_ending_every_line_names_no_column(sep, reference):
+    # a spreadsheet may save each line with a separator at its end
+    text = "".join(line + sep + "\n" for line in _example_text(sep).splitlines())
+    fits = ca.fit_all(parse_csv_text(text, "x.csv")[0])
+    assert fits[8].K_N_per_mm == pytest.approx(reference[8][0], abs=1e-9, rel=0)
+
+
+def test_a_value_past_the_header_is_still_refused():
+    lines = _example_text().splitlines()
+    lines[3] += ",7"
+    with pytest.raises(CalibrationError, match="line"):
+        parse_csv_text("\n".join(lines) + "\n", "x.csv")
+
+
 def test_utf16_with_byte_order_mark_is_read(tmp_path, reference):
     path = tmp_path / "u16.csv"
     path.write_bytes(_example_text().encode("utf-16"))

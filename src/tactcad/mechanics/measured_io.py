@@ -423,6 +423,7 @@ def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] 
                                f"{','.join(COLUMNS)} and >= 3 readings per element")
     header_n, header_line = lines[0]
     separator, header = _split_header(header_line, mapping)
+    header = _without_trailing_empty(header)  # a spreadsheet's separator at each line's end
     if len(set(header)) != len(header):
         dup = next(h for h in header if header.count(h) > 1)
         raise CalibrationError(f"{source}: line {header_n}, column {dup!r}: appears twice in the "
@@ -446,6 +447,8 @@ def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] 
     readings = _Readings()
     for n, line in lines[1:]:
         cells = next(csv.reader([line], delimiter=separator))
+        if len(cells) > len(header) and not "".join(cells[len(header):]).strip():
+            cells = cells[:len(header)]  # the empty cells after a trailing separator
         if len(cells) != len(header):
             raise CalibrationError(f"{source}: line {n}, column {min(len(cells), len(header)) + 1}:"
                                    f" {len(cells)} values: allowed {len(header)} "
@@ -457,6 +460,15 @@ def parse_csv_text(text: str, source: str = "<csv>", mapping: Mapping[str, str] 
     return data, ReadInfo(source, "csv", encoding, separator, decimal,
                           {c: header[i] for c, i in index.items()}, readings.count,
                           readings.places_of())
+
+
+def _without_trailing_empty(header: list[str]) -> list[str]:
+    """The header's cells without the empty ones at its end: a spreadsheet saving a CSV
+    may end every line with a separator, which names no column."""
+    end = len(header)
+    while end > 0 and not header[end - 1]:
+        end -= 1
+    return header[:end]
 
 
 def _split_header(line: str, mapping: Mapping[str, str]) -> tuple[str, list[str]]:
@@ -737,6 +749,8 @@ def read_flat_readings(path, encoding: str | None = None
     steps: dict[int, dict[int, float]] = {}
     for n, line in lines[1:]:
         cells = next(csv.reader([line], delimiter=separator))
+        if len(cells) > len(header) and not "".join(cells[len(header):]).strip():
+            cells = cells[:len(header)]  # the empty cells after a trailing separator
         if len(cells) != len(header):
             raise CalibrationError(f"{where}: line {n}: {len(cells)} values: allowed "
                                    f"{len(header)} ({separator.join(header)})")
