@@ -230,9 +230,10 @@ def _validated(data: Mapping[str, Any], design: Path,
 
 
 def check_references_stiffer(plan: "Plan") -> None:
-    """Refuse a design whose named reference is not stiffer than the elements read against
-    it (:func:`tactcad.mechanics.readout_chain.soft_reference_errors`, K at the closed
-    form): it cannot read K_obj.
+    """Refuse a design whose reference is not stiffer than the elements read against it
+    (:func:`tactcad.mechanics.readout_chain.soft_reference_errors`, K at the closed form:
+    a few milliseconds): it cannot read K_obj. A named reference softer than one of its
+    elements, or a row whose stiffest element (its reference, none named) has a twin.
 
     Raises:
         DesignErrors: one refusal per such reference, naming the stiffnesses and the rule.
@@ -241,8 +242,6 @@ def check_references_stiffer(plan: "Plan") -> None:
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import soft_reference_errors
 
-    if not (plan.raw.get("arms") or {}).get("reference_elements"):
-        return  # each row's stiffest: nothing to compute
     errors = soft_reference_errors(plan, ladder_stiffness_by_element(plan))
     if errors:
         raise DesignErrors(errors)

@@ -328,6 +328,18 @@ def test_a_named_reference_softer_than_its_row_is_refused_with_the_stiffnesses()
         == (2, 5)
 
 
+def test_a_row_of_equal_elements_with_no_reference_named_is_refused():
+    import tactcad
+
+    with pytest.raises(DesignErrors) as err:  # the Ti example names none: each row's stiffest
+        tactcad.load(TI_EXAMPLE, set={"arms.lengths_mm": [6.196, 6.196, 19.605] * 2})
+    refused = err.value.errors
+    assert [e.field for e in refused] == ["arms.lengths_mm"] * 2
+    assert "(the file names none)" in refused[0].allowed and "is 1 for every K_obj" in refused[0].why
+    assert "element 1 has K" in refused[0].allowed and "element 2 " in refused[0].allowed
+    tactcad.load(TI_EXAMPLE, set={"arms.lengths_mm": [6.196, 6.3, 19.605] * 2})  # one stiffest
+
+
 def test_a_soft_reference_is_refused_by_the_commands_that_read_the_design(tmp_path):
     import shutil
 

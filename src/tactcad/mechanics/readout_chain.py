@@ -550,7 +550,8 @@ def soft_reference_errors(plan: Plan, k: dict[int, float]) -> list:
     against them (:meth:`Plan.reference_for`): such a unit cannot read K_obj, since eq. 2,
     R = (K_r + K_obj) / (K_m + K_obj), spans 1 ... K_r / K_m and eq. 3 inverts it only for
     K_r > K_m (paper eq. 2-3, :mod:`tactcad.mechanics.lumped_model`). References the file
-    leaves out are each row's stiffest and are not judged here.
+    leaves out are each row's stiffest: refused only where another element of the row is
+    as stiff (a row of equal elements has no reference).
 
     Args:
         plan: the design.
@@ -567,8 +568,6 @@ def soft_reference_errors(plan: Plan, k: dict[int, float]) -> list:
     from tactcad.errors import DesignError
 
     named = (plan.raw.get("arms") or {}).get("reference_elements")
-    if not named:
-        return []
     errors = []
     for i, ref in enumerate(plan.references):
         against = [s.number for s in plan.slots
@@ -578,6 +577,17 @@ def soft_reference_errors(plan: Plan, k: dict[int, float]) -> list:
             continue
         stiffest = max(against + [ref], key=lambda n: (k[n], -n))
         where = "column" if plan.pairing == "column" else "row"
+        if not named:  # the row's stiffest is its reference: another as stiff leaves R = 1
+            errors.append(DesignError(
+                "arms.lengths_mm", [s.geometry.arm_length_mm for s in plan.slots],
+                f"a {where} whose stiffest element, its reference (the file names none), is "
+                f"stiffer than every other: element {ref} has K = {k[ref]:.4g} N/mm, "
+                + ", ".join(f"element {n} {k[n]:.4g} N/mm" for n in stiffer)
+                + "; give its reference a shorter arm (or a thicker web), or name one in "
+                "arms.reference_elements",
+                "the method reads K_obj from R = (K_r + K_obj) / (K_m + K_obj) (eq. 2-3), "
+                "which is 1 for every K_obj when K_r = K_m", file=Path(plan.source).name))
+            continue
         errors.append(DesignError(
             f"arms.reference_elements[{i + 1}]", ref,
             f"an element stiffer than every element read against it (K_r > K_m): element "
