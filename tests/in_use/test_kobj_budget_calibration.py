@@ -171,6 +171,25 @@ def test_the_budget_names_the_resolution_that_brings_the_term_within_its_allowan
     assert budget(1.05 * needed).notes["calibration_gauge_fits"] is False
 
 
+def test_the_budget_names_the_runs_that_bring_the_term_within_on_the_same_gauge(comb,
+                                                                              monkeypatch):
+    """Every reading independent, the term's variance falls as 1 / runs: the count the budget
+    names brings it within its allowance, one fewer does not."""
+    def notes(runs: int) -> dict:
+        monkeypatch.setattr(kb, "CALIBRATION_REPEATS", runs)
+        return kb.kobj_budget(comb, (0.5, 5.0), 0.05, points=3,
+                              force_gauge=calibration_gauge(comb)).notes
+
+    assert kb.CALIBRATION_REPEATS == 3
+    first = notes(3)
+    runs = first["calibration_runs_needed"]
+    assert first["calibration_gauge_fits"] is False and runs > 3
+    assert f"{runs} runs of the calibration" in first["calibration_allowance"]
+    assert notes(runs)["calibration_gauge_fits"] is True
+    assert notes(runs)["calibration_runs_needed"] is None
+    assert notes(runs - 1)["calibration_gauge_fits"] is False
+
+
 def test_an_accuracy_the_other_terms_fill_names_no_resolution():
     """Where the other terms alone fill the stated accuracy, no force gauge helps, and the
     words say so rather than naming a resolution."""

@@ -844,12 +844,16 @@ class CalibrationNeed(NamedTuple):
             resolution can (``words`` says which).
         fits: the term is within its allowance at every K_obj.
         words: the allowance and the verdict, in words.
+        runs_needed: the runs of the calibration (:data:`CALIBRATION_REPEATS` assumed) that
+            bring the term within its allowance on the same gauge, the term's variance
+            falling as 1 / runs; None when it is within already, or no count can.
     """
 
     force_share_rel: float
     resolution_needed_N: float | None
     fits: bool
     words: str
+    runs_needed: int | None = None
 
 
 def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dict],
@@ -863,7 +867,9 @@ def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dic
     calibration is linear in the elements' standard errors, and σ_K grows as the force
     resolution n, σ_K_v as the root of a constant plus n², so the term squared is A + B n²
     (A: the bridge noise alone, n = 0): the resolution needed is n sqrt((T² − A) / (c² − A))
-    for a term c and allowance T; none helps where A alone exceeds T.
+    for a term c and allowance T; none helps where A alone exceeds T. Both parts of the
+    variance fall as 1 / runs (every reading independent), so :data:`CALIBRATION_REPEATS`
+    x c² / T² runs bring it within on the same gauge.
 
     Args:
         ctx: the budget's context. pairs, units: its units and their records.
@@ -882,6 +888,7 @@ def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dic
     quiet = _calibration_stderr(ctx, force_noise_N=0.0)
     accuracy = stated_kobj_accuracy(ctx.plan.raw)
     share, worst, needed, full, noisy = 0.0, -1.0, [], False, False
+    runs_ratio = 0.0  # the largest c² / T² where the term misses its allowance
     for i, b in enumerate(best):
         if not math.isfinite(rss[b, i]):
             continue
@@ -895,7 +902,9 @@ def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dic
             continue
         if allowance_sq <= 0.0:
             full = True
-        elif allowance_sq <= a ** 2 or c ** 2 <= a ** 2:
+            continue
+        runs_ratio = max(runs_ratio, c ** 2 / allowance_sq)
+        if allowance_sq <= a ** 2 or c ** 2 <= a ** 2:
             noisy = True
         else:
             needed.append(n * math.sqrt((allowance_sq - a ** 2) / (c ** 2 - a ** 2)))
@@ -903,6 +912,9 @@ def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dic
                  f"{100 * accuracy:g} %" if accuracy is not None
                  else "no larger than the other terms' RSS")
     gauge = ctx.force_gauge.gauge
+    runs = math.ceil(CALIBRATION_REPEATS * runs_ratio * (1 - 1e-9)) if runs_ratio else None
+    more_runs = (f"; so would {runs} runs of the calibration on this gauge, not "
+                 f"{CALIBRATION_REPEATS}" if runs else "")
     head = (f"the calibration term, at most {100 * worst:.3g} % ({100 * share:.0f} % of its "
             f"variance from the force gauge read to {n:g} N), should be {allowance}")
     if full:
@@ -912,13 +924,14 @@ def calibration_resolution_need(ctx: Context, pairs: list[Unit], units: list[dic
     if noisy:
         return CalibrationNeed(share, None, False, (
             f"{head}: no force gauge resolution brings it there, the bridge noise over the "
-            f"calibration's deflection span alone exceeds it; more runs, longer averaging "
-            f"or a quieter read-out would"))
+            f"calibration's deflection span alone exceeds it; more runs ({runs}, not "
+            f"{CALIBRATION_REPEATS}), longer averaging or a quieter read-out would"), runs)
     if needed:
         res = listed([min(needed)])[0]
         return CalibrationNeed(share, res, False, (
             f"{head}: {gauge.model} misses it; a gauge of its stiffness "
-            f"({gauge.stiffness_N_per_mm:g} N/mm) read to {res:.2g} N would bring it there"))
+            f"({gauge.stiffness_N_per_mm:g} N/mm) read to {res:.2g} N would bring it there"
+            f"{more_runs}"), runs)
     return CalibrationNeed(share, None, True, f"{head}: it is")
 
 
@@ -1233,6 +1246,7 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         **({"calibration_force_share_rel": listed([need.force_share_rel])[0],
             "calibration_gauge_resolution_needed_N": need.resolution_needed_N,
             "calibration_gauge_fits": need.fits,
+            "calibration_runs_needed": need.runs_needed,
             "calibration_allowance": need.words} if need is not None else {}),
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",
