@@ -121,6 +121,16 @@ def _run_folder(tmp_path_factory) -> Path:
 
 #: The shipped example that is not the paper's design (tests of a new design's files).
 EXAMPLE_DESIGN = Path(__file__).resolve().parents[1] / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+#: The shipped silicon die's design file (the 5 mm jaw's).
+DIE_EXAMPLE = (Path(__file__).resolve().parents[1] / "hardware" / "grasper_jaw_5mm_mems"
+               / "grasper_jaw_5mm_mems.toml")
+
+
+@pytest.fixture
+def die_folder(tmp_path):
+    """A working folder holding a copy of the shipped die's design file alone."""
+    (tmp_path / DIE_EXAMPLE.name).write_bytes(DIE_EXAMPLE.read_bytes())
+    return tmp_path
 
 
 def _once_per_run(tmp_path_factory, name: str, make) -> Path:

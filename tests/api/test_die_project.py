@@ -9,17 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli
-
-EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
-           / "grasper_jaw_5mm_mems.toml")
-
-
-@pytest.fixture
-def die_folder(tmp_path):
-    (tmp_path / EXAMPLE.name).write_bytes(EXAMPLE.read_bytes())
-    return tmp_path
-
+from conftest import DIE_EXAMPLE as EXAMPLE, run_cli
 
 @pytest.mark.slow  # exports a die and checks it, about a minute
 def test_a_die_projects_hash_and_check_are_the_commands(die_folder, monkeypatch):

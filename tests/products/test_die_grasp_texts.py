@@ -4,21 +4,10 @@ coupling left in the reading."""
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
 
-from conftest import run_cli
-
-EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
-           / "grasper_jaw_5mm_mems.toml")
-
-
-@pytest.fixture
-def die_folder(tmp_path):
-    (tmp_path / EXAMPLE.name).write_bytes(EXAMPLE.read_bytes())
-    return tmp_path
-
+from conftest import DIE_EXAMPLE as EXAMPLE, run_cli
 
 def test_no_coupling_caveat_without_coupling(die_folder):
     off = run_cli("grasp", "--coupling", "none", cwd=die_folder)

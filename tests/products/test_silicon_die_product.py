@@ -10,17 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli
-
-EXAMPLE = (Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
-           / "grasper_jaw_5mm_mems.toml")
-
-
-@pytest.fixture
-def die_folder(tmp_path):
-    (tmp_path / EXAMPLE.name).write_bytes(EXAMPLE.read_bytes())
-    return tmp_path
-
+from conftest import DIE_EXAMPLE as EXAMPLE, run_cli
 
 def test_strength_on_a_die_gives_each_rows_root_against_etched_silicon(die_folder):
     from tactcad.commands.die import _die_args, die_asked, plan_of
