@@ -256,6 +256,23 @@ def keeping_results(store: Store) -> Iterator[Store]:
         _RESULTS.reset(token)
 
 
+@contextlib.contextmanager
+def memo_scope(var: ContextVar) -> Iterator[None]:
+    """Within the block, ``var`` holds one dict for answers kept in memory by their inputs
+    (a search's repeated pure steps); a nested block shares the outer one's, and the dict is
+    dropped on leaving the outermost.
+
+    Args:
+        var: a ``ContextVar[dict | None]`` whose default is None (no scope open).
+    """
+    token = var.set({}) if var.get() is None else None
+    try:
+        yield
+    finally:
+        if token is not None:
+            var.reset(token)
+
+
 #: Inside :func:`only_kept`, :func:`kept_result` computes nothing: a value not kept raises.
 _ONLY_KEPT: ContextVar[bool] = ContextVar("tactcad_only_kept", default=False)
 

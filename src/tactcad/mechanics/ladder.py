@@ -140,12 +140,10 @@ def closed_form_estimates_kept() -> Iterator[None]:
         A context manager; the estimates are dropped on leaving the outermost (a kept
         result's ``wall_time_s`` is its first evaluation's).
     """
-    token = _KEPT_CLOSED_FORM.set({}) if _KEPT_CLOSED_FORM.get() is None else None
-    try:
+    from tactcad.store import memo_scope
+
+    with memo_scope(_KEPT_CLOSED_FORM):
         yield
-    finally:
-        if token is not None:
-            _KEPT_CLOSED_FORM.reset(token)
 
 
 def gauge_rise_error_rel(model: str) -> float:

@@ -229,12 +229,10 @@ def web_solves_kept() -> Iterator[None]:
     Returns:
         A context manager; the answers are dropped on leaving the outermost.
     """
-    token = _KEPT_WEBS.set({}) if _KEPT_WEBS.get() is None else None
-    try:
+    from tactcad.store import memo_scope
+
+    with memo_scope(_KEPT_WEBS):
         yield
-    finally:
-        if token is not None:
-            _KEPT_WEBS.reset(token)
 
 
 def solve_web(geometry, material, k_target: float, lo: float, hi: float) -> float | None:
