@@ -575,7 +575,6 @@ def soft_reference_errors(plan: Plan, k: dict[int, float]) -> list:
         stiffer = [n for n in against if k[n] >= k[ref] * (1 - 1e-9)]
         if not stiffer:
             continue
-        stiffest = max(against + [ref], key=lambda n: (k[n], -n))
         where = "column" if plan.pairing == "column" else "row"
         if not named:  # the row's stiffest is its reference: another as stiff leaves R = 1
             errors.append(DesignError(
@@ -588,6 +587,7 @@ def soft_reference_errors(plan: Plan, k: dict[int, float]) -> list:
                 "the method reads K_obj from R = (K_r + K_obj) / (K_m + K_obj) (eq. 2-3), "
                 "which is 1 for every K_obj when K_r = K_m", file=Path(plan.source).name))
             continue
+        stiffest = max(against + [ref], key=lambda n: (k[n], -n))
         errors.append(DesignError(
             f"arms.reference_elements[{i + 1}]", ref,
             f"an element stiffer than every element read against it (K_r > K_m): element "

@@ -1364,13 +1364,12 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
     smallest = None
     for sheet in sheets_of(tables):
         pitch = least_pitch_mm(tables, sheet, columns, roomy, targets, grade)
-        along = pitch * columns
-        env = comb_envelope_mm(tables, sheet, columns,
-                               replace(roomy, along_mm=pocket_for_length_mm(tables, along)),
+        pocket = pocket_for_length_mm(tables, pitch * columns)  # the length, its deviation
+        env = comb_envelope_mm(tables, sheet, columns, replace(roomy, along_mm=pocket),
                                targets, grade)
         if env is None:
             continue
-        misses = _misses(env, pocket_for_length_mm(tables, along), room)
+        misses = _misses(env, pocket, room)
         if not misses:
             return []
         if smallest is None or (len(misses), env[0]) < (len(smallest[2]), smallest[1][0]):
