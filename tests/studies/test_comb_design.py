@@ -480,21 +480,39 @@ def test_a_candidate_short_of_the_margin_by_its_limits_never_has_the_margin(
     assert all(c.force_margin_rel < FORCE_MARGIN_REL for c in named)
 
 
-def test_without_an_answer_the_first_preferred_search_judges_every_candidate_as_the_whole():
-    """Held back or not, every candidate ends up judged, each the whole search's own."""
-    from tactcad.studies.comb_design import (comb_candidates, first_preferred,
-                                             in_search_order, searched_base)
+@pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
+    (10.0, (0.5, 5.0), 0.6, 2),  # refused: every rated pair falls short of the force
+    (10.0, (0.5, 5.0), 0.15, 2),  # two count, neither with the margin
+])
+def test_without_an_answer_the_first_preferred_search_answers_as_the_whole(
+        kr_over_km, kobj, force, columns):
+    """Held back, each candidate is the whole search's own: its tables, margin and rating;
+    those left unjudged (sketched) fail there too, the same ones count, and the nearest
+    failure is the same candidate with the same first failure."""
+    from tactcad.studies.comb_design import (comb_candidates, counting, first_preferred,
+                                             in_search_order, nearest_failure, searched_base)
 
-    targets = Targets(10.0, (0.5, 5.0), 0.6)
+    targets = Targets(kr_over_km, kobj, force)
     judged: list = []
-    assert first_preferred(targets, jaw_room("10"), 2, BASE, grade=TI,
+    assert first_preferred(targets, jaw_room("10"), columns, BASE, grade=TI,
                            envelope_of=array_envelope_mm, judged=judged) is None
-    _, tried = comb_candidates(targets, jaw_room("10"), 2, BASE, grade=TI,
+    _, tried = comb_candidates(targets, jaw_room("10"), columns, BASE, grade=TI,
                                envelope_of=array_envelope_mm)
-    lazy = in_search_order(judged, searched_base(BASE, 2))
-    assert [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel, c.rated_force_N, c.data)
-            for c in lazy] == [(c.sheet_mm, c.km_scale, c.failures, c.force_margin_rel,
-                                c.rated_force_N, c.data) for c in tried]
+    lazy = in_search_order(judged, searched_base(BASE, columns))
+    assert [(c.sheet_mm, c.km_scale, c.force_margin_rel, c.rated_force_N, c.data)
+            for c in lazy] == [(c.sheet_mm, c.km_scale, c.force_margin_rel, c.rated_force_N,
+                                c.data) for c in tried]
+    sketched = [(c, whole) for c, whole in zip(lazy, tried) if c.sketched]
+    assert sketched and all(whole.failures for _, whole in sketched)
+    assert all(c.failures == whole.failures and c.limits == whole.limits
+               for c, whole in zip(lazy, tried) if not c.sketched)
+    assert [(c.sheet_mm, c.km_scale, c.failures) for c in counting(lazy)] == \
+        [(c.sheet_mm, c.km_scale, c.failures) for c in counting(tried)]
+    assert bool(counting(tried)) is (force < 0.5)
+    near, whole_near = nearest_failure(lazy), nearest_failure(tried)
+    assert not near.sketched
+    assert (near.sheet_mm, near.km_scale, near.failures, near.limits) == \
+        (whole_near.sheet_mm, whole_near.km_scale, whole_near.failures, whole_near.limits)
 
 
 def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):

@@ -90,6 +90,10 @@ class CombCandidate:
     #: what fails this sheet and K_m scale at any full-scale force (:class:`ForceBound`);
     #: None when nothing is known beyond the force it was judged at
     force_bound: "ForceBound | None" = None
+    #: recorded from its limits alone, its verification matrix left out
+    #: (:func:`sketched_candidate`): its margin and rating are its judgement's, its
+    #: failures only the force
+    sketched: bool = False
 
 
 @dataclass(frozen=True)
@@ -769,7 +773,9 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
         judged: where given, every candidate judged is appended to it (all of them when
             the answer is None: :func:`in_search_order` makes them the full search's). A
-            candidate :func:`short_of_margin` is judged only then, after the others.
+            candidate :func:`short_of_margin` is judged only then, after the others, and
+            only where its judgement can change the search's answer
+            (:func:`settled_short`; the others are sketched from their limits).
         scales: the K_m scales walked (default :data:`KM_SCALES`); a caller leaves out only
             scales none of whose candidates can count (:func:`atlas_scales`).
 
@@ -798,9 +804,91 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
                 if c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
                     return c
-        judged += [judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
-                   for d, sheet, scale, at, plan, limits in short]
+        judged += settled_short(short, judged, envelope_of)
     return None
+
+
+def limits_bound(limits: list) -> ForceBound:
+    """A candidate's :class:`ForceBound` read from its closed-form limits alone
+    (:func:`planned_limits`): the binding limit's force and error, which its verification
+    matrix's full-scale-force record takes from the same limits, and its gauge limits.
+
+    Args:
+        limits: the candidate's limits at the closed form (not empty).
+
+    Returns:
+        The bound.
+    """
+    from tactcad.mechanics.limits import GAUGE_LIMITS, binding
+
+    b = binding(limits)
+    return ForceBound(binding_force_N=b.force_N, binding_error_rel=b.error_estimate_rel,
+                      gauge_limits=tuple((lim.force_N, lim.error_estimate_rel) for lim in limits
+                                         if lim.limit in GAUGE_LIMITS))
+
+
+def sketched_candidate(d: dict, sheet: float, km_scale: float, plan: Any, bound: ForceBound
+                       ) -> CombCandidate:
+    """A candidate its limits already fail at its full-scale force (``bound.fails_at``),
+    recorded without its verification matrix: its force margin and rating are the ones
+    its judgement would give (both read from the binding limit), its one failure the
+    force. It is never the nearest failure of :func:`settled_short`'s answer.
+
+    Args:
+        d: the tables (webs and stops set). sheet: mm. km_scale: K_m over eq. 2's centre.
+        plan: ``d``'s plan. bound: :func:`limits_bound` of its limits.
+
+    Returns:
+        The candidate (``sketched`` True).
+    """
+    from tactcad.vocabulary.binding_limits import FORCE
+
+    force = d["requirements"]["full_scale_force_N"]
+    allowed = float(bound.binding_force_N or 0.0)
+    return CombCandidate(sheet, km_scale, d, plan,
+                         (f"full-scale force: the binding limit allows {allowed:.4g} N, "
+                          f"{force:g} N asked (closed form)",),
+                         allowed / force - 1.0, rated_force_N(d, bound), (FORCE,), bound,
+                         sketched=True)
+
+
+def settled_short(short: list[tuple], judged: list[CombCandidate],
+                  envelope_of: Callable | None) -> list[CombCandidate]:
+    """The candidates :func:`first_preferred` set aside as short of the force margin, each
+    judged where its judgement can change what the search answers: whether some candidate
+    counts (which, and with what margin) or, where none does, the nearest failure
+    (:func:`nearest_failure`: the most force margin, the stiffer pair on a tie) and its
+    first failure. A candidate whose limits fail its force (:meth:`ForceBound.fails_at`,
+    the judgement's own rule with :data:`BOUND_SLACK_REL` to spare) cannot count; unless
+    its margin comes within the slack of the nearest's it is sketched
+    (:func:`sketched_candidate`), its verification matrix, most of a judgement's cost,
+    left out.
+
+    Args:
+        short: (tables, sheet mm, K_m scale, room, plan, limits) of each candidate set
+            aside. judged: the candidates judged already (none counting with the margin).
+        envelope_of: as :func:`judge_limits`.
+
+    Returns:
+        One candidate per entry of ``short``, in its order.
+    """
+    out: list[CombCandidate] = []
+    for d, sheet, scale, at, plan, limits in short:
+        bound = limits_bound(limits)
+        if bound.fails_at(d["requirements"]["full_scale_force_N"]):
+            out.append(sketched_candidate(d, sheet, scale, plan, bound))
+        else:
+            out.append(judged_candidate(d, sheet, scale, envelope_of, at, plan, limits))
+    while True:
+        nearest = nearest_failure(judged + out)
+        close = [i for i, c in enumerate(out) if c.sketched and nearest is not None
+                 and c.force_margin_rel >= nearest.force_margin_rel - 2 * BOUND_SLACK_REL
+                 * (1.0 + abs(nearest.force_margin_rel))]
+        if not close:
+            return out
+        for i in close:  # judged in full: the nearest's first failure is its own
+            d, sheet, scale, at, plan, limits = short[i]
+            out[i] = judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
 
 
 def in_search_order(judged: list[CombCandidate], base: Mapping[str, Any]

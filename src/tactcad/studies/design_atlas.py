@@ -11,7 +11,8 @@ Every point is design's own verdict, reached by design's own functions:
   those whose closed-form limits already fall short of the margin); where none does, every sheet at
   every K_m scale whose stops can fit (:func:`~tactcad.studies.comb_design.atlas_scales`:
   the others are refused on every sheet and change no record) has been judged at the
-  closed form, taken in
+  closed form (those whose limits already fail the force only as far as the record needs:
+  :func:`~tactcad.studies.comb_design.settled_short`), taken in
   :func:`~tactcad.studies.comb_design.comb_candidates`' order
   (:func:`~tactcad.studies.comb_design.in_search_order`); where one counts, the comb design writes
   (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
