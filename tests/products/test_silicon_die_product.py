@@ -302,3 +302,44 @@ def test_design_for_a_die_takes_a_kobj_accuracy_or_pastes_what_it_reaches(tmp_pa
     row = next(x for x in json.loads(v.stdout)["matrix"]
                if x["requirement"] == "kobj_accuracy_rel")
     assert v.returncode == 0 and row["verdict"] == "pass" and row["predicted"] <= float(paste)
+
+
+def test_a_dies_export_replaces_its_folder_whole_keeping_the_labs_own_files(die_folder,
+                                                                            monkeypatch):
+    """As an array's export: the new set is swapped in whole (a file the old export listed
+    and the new one does not make is gone, a lab's own file stays), an export stopped before
+    the swap leaves the old set byte for byte and no staging folder, and a folder that cannot
+    be replaced whole (the working folder) is refused before any work."""
+    import argparse
+
+    from tactcad.commands import die as die_command
+
+    out = die_folder / "exports"
+    assert run_cli("export", "--out", "exports", "--quiet", cwd=die_folder).returncode == 0
+    manifest = json.loads((out / "manifest.json").read_text())
+    manifest["files"].append({"path": "old_only.txt", "sha256": "", "bytes": 3})
+    (out / "manifest.json").write_text(json.dumps(manifest))
+    (out / "old_only.txt").write_text("old")
+    (out / "our_notes.txt").write_text("the lab's")
+    assert run_cli("export", "--out", "exports", "--quiet", cwd=die_folder).returncode == 0
+    assert not (out / "old_only.txt").exists()
+    assert (out / "our_notes.txt").read_text() == "the lab's"
+    before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
+
+    def stopped(*_args, **_kw):
+        raise KeyboardInterrupt
+
+    monkeypatch.chdir(die_folder)
+    monkeypatch.setattr("tactcad.atomic.publish_dir", stopped)
+    args = die_command._die_args(die_folder / EXAMPLE.name,
+                                 argparse.Namespace(json=False, quiet=True), out)
+    with pytest.raises(KeyboardInterrupt):
+        die_command.run(args)
+    assert {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+    assert not list(die_folder.glob(".exports.staging-*"))
+
+    empty = die_folder / "here"
+    empty.mkdir()
+    r = run_cli("export", "--design", str(die_folder / EXAMPLE.name), "--out", ".", cwd=empty)
+    assert r.returncode != 0 and "working folder" in r.stderr and "Traceback" not in r.stderr
+    assert not list(empty.iterdir()) and not list(die_folder.glob(".here.*"))

@@ -294,7 +294,8 @@ def with_attach(plan, attach):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.atomic import note_changed, staging_dir, writing_lock
+    from tactcad.atomic import carry_over, publish_dir, staging_dir, writing_lock
+    from tactcad.export.export_owner import written_by_tactcad
     from tactcad.checks.check_result import counts_text, status_counts
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.checks.sheet_overlap import sheet_file_results
@@ -378,11 +379,14 @@ def run(args: argparse.Namespace) -> int:
         made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
         _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
                                    mount, getattr(args, "design", None))
-        out.mkdir(parents=True, exist_ok=True)
-        note_changed(out)  # from here an interrupt leaves some files new: it says so
-        for k in sorted(made, key=lambda k: k == "manifest"):  # the manifest last
-            files[k].parent.mkdir(parents=True, exist_ok=True)
-            os.replace(made[k], files[k])
+        if out.is_dir():  # the lab's own files in the folder stay; the old export's go
+            ours = written_by_tactcad(out)
+            carry_over(out, staging, lambda rel: rel not in ours)
+        os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
+        # the folder swapped whole, as an array's export: a run stopped at any moment
+        # leaves the old set or the new one, never a mix
+        publish_dir(staging, out)
+        staging = None  # it held the old export, which publish_dir removed
     finally:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
@@ -730,13 +734,18 @@ def refuse_a_foreign_folder(out: Path, name: str) -> None:
         DesignError: ``--out`` in a system folder (:func:`tactcad.atomic.refuse_system_folder`),
             a file, a folder with files but no export of this die, or a folder that cannot be
             made (:func:`tactcad.atomic.unmakeable_folder`).
+        ExportPathError: a folder an export cannot replace as a whole (the home or working
+            folder, a mount point, another user's export: the array's rule,
+            :func:`tactcad.export.run.check_out_dir`).
     """
     from tactcad.atomic import refuse_system_folder, unmakeable_folder
     from tactcad.export.export_owner import refuse_another_designs_export
+    from tactcad.export.run import check_out_dir
     from tactcad.products.silicon_die.export.die_review import PRODUCT_NAME
 
     refuse_system_folder("--out", out, out)
     refuse_another_designs_export(out, PRODUCT_NAME, name)
+    check_out_dir(out)  # the folder is swapped whole, as an array's export is
     reason = None if out.is_dir() else unmakeable_folder(out)
     if reason is not None:  # before the staging folder beside it is made
         raise DesignError("--out", str(out), "a folder that can be made", reason)

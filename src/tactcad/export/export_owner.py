@@ -67,3 +67,21 @@ def refuse_another_designs_export(out: Path, product: str, name: str) -> None:
     raise DesignError("--out", str(out), allowed,
                       f"{out} holds the export of the {owner[0]} {owner[1]}: {name}'s export "
                       "would be mixed with it or delete it; name another folder")
+
+
+def written_by_tactcad(out: Path) -> set[str]:
+    """The paths (relative, POSIX) the export now in ``out`` wrote: its manifest's files
+    and the manifest, whatever the product; only the manifest when it cannot be read.
+
+    Args:
+        out: an export folder.
+
+    Returns:
+        The paths an export replacing it replaces; the folder's other files are the lab's,
+        carried over (:func:`tactcad.atomic.carry_over`).
+    """
+    try:
+        man = json.loads((Path(out) / MANIFEST).read_text(encoding="utf-8"))
+        return {f["path"] for f in man["files"]} | {MANIFEST}
+    except (OSError, ValueError, KeyError, TypeError):
+        return {MANIFEST}

@@ -32,7 +32,8 @@ from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
                             writing_lock)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
-from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
+from tactcad.export.export_owner import (default_product_name, refuse_another_designs_export,
+                                         written_by_tactcad)
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
@@ -236,15 +237,6 @@ def _inside(folder: Path, rel: str) -> Path:
     return path
 
 
-def _written_by_tactcad(out: Path) -> set[str]:
-    """Paths the export now in ``out`` wrote (its manifest's files and the manifest)."""
-    try:
-        man = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-        return {f["path"] for f in man["files"]} | {MANIFEST}
-    except (OSError, ValueError, KeyError, TypeError):
-        return {MANIFEST}
-
-
 def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Project, log: Log,
                store: Store, with_manifest: bool, parts=None,
                dxf_version: str | None = None, partial: dict | None = None,
@@ -288,7 +280,7 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             write_bytes_atomic(staging / MANIFEST, man_bytes)
             files = man["files"] + [{"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
         if out.is_dir():
-            ours = _written_by_tactcad(out) if with_manifest else set()
+            ours = written_by_tactcad(out) if with_manifest else set()
             carry_over(out, staging, lambda rel: rel not in ours)
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
