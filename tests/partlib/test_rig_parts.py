@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 
 import pytest
 
@@ -160,3 +161,30 @@ def test_the_indenter_drawing_note_gives_the_designs_own_face(tip_width_mm):
     g = rig_parts(project.plan, project.validated.rigs)["indenter"].geometry
     note = " ".join(notes_after(g, PEN))
     assert f"the {tip_width_mm:g} x 2.5 mm face lies flat" in note and "2 x 3 mm" not in note
+
+
+@pytest.mark.parametrize("columns, arms, fewer", [
+    (3, None, True),
+    (2, "[19.605, 6.196, 19.605, 6.196]", False),  # a stacked array's fewest columns
+])
+def test_the_bracket_bolt_refusal_offers_fewer_columns_only_above_the_fewest(
+        tmp_path, columns, arms, fewer):
+    """A bracket ear too thick for any stock bolt is refused on the design's columns; it
+    offers fewer columns only where the stacked array may have fewer (2 pair one reference
+    with one measuring element)."""
+    import shutil
+
+    from conftest import run_cli
+    from tactcad.design.array_plan import EXAMPLES
+
+    folder = tmp_path / "ti"
+    shutil.copytree(EXAMPLES / "ti_array_2x3", folder)
+    rigs = folder / "rigs.toml"
+    rigs.write_text(re.sub(r"(?m)^ear_thickness_mm = .*$", "ear_thickness_mm = 12",
+                           rigs.read_text(encoding="utf-8")), encoding="utf-8")
+    sets = ["--set", "clamp.plate_thickness_mm=6"] + (
+        ["--set", f"array.columns={columns}", "--set", f"arms.lengths_mm={arms}"] if arms else [])
+    r = run_cli("verify", *sets, cwd=folder)
+    assert r.returncode == 2 and "the bracket bolt through ear 12 mm" in r.stderr, r.stderr
+    assert f"array.columns = {columns}" in r.stderr
+    assert ("fewer columns" in r.stderr) is fewer

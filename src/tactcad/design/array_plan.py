@@ -59,6 +59,8 @@ from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN,  # noqa:
 from tactcad.partlib.array.prism import Hole
 from tactcad.partlib.array.spacer import SpacerGeometry
 from tactcad.partlib.registry import array_parts_lib, in_use_parts
+from tactcad.vocabulary.grid import (COLUMNS_RANGE, MAX_COLUMNS, MIN_PAIRED_COLUMNS,
+                                     STACKED_COLUMNS_RANGE, STACKED_COLUMNS_WHY)
 
 #: The example sensor projects shipped with tactcad, one folder each (the
 #: source tree's ``hardware/``, installed as package data ``tactcad/examples``).
@@ -81,24 +83,6 @@ MIN_ARM_STEP_MM = 0.01
 MIN_TIP_WALL_MM = 0.1
 #: Shortest base below the arm underside, mm (room for the clamp bolts and a gauge pad).
 MIN_BASE_BELOW_ARM_MM = 2.0
-#: Most columns of a grid: the one range of ``array.columns`` and of ``design --columns``
-#: (an element count the closed form and the drawings have been checked over).
-MAX_COLUMNS = 12
-#: The allowed range of the columns of a grid (inclusive), wherever they are asked: a comb,
-#: paired across its rows, reads with one column.
-COLUMNS_RANGE = (1, MAX_COLUMNS)
-#: Fewest columns of a stacked array: each row pairs its reference with an element of its
-#: own that measures.
-MIN_PAIRED_COLUMNS = 2
-#: The allowed range of a stacked array's columns (inclusive): the one range of its design
-#: file's ``array.columns`` (:func:`stacked_columns_error`, judged where a design file is
-#: loaded; a plan built for one element's figures may have one column) and of
-#: ``design --columns``.
-STACKED_COLUMNS_RANGE = (MIN_PAIRED_COLUMNS, MAX_COLUMNS)
-#: Why a stacked array's columns are what they are (the grid's range, and a pair per row).
-STACKED_COLUMNS_WHY = ("each row pairs its reference with the row's other elements, so a row "
-                       "of one column has no element left to measure; the most is the grid's "
-                       "(array.columns)")
 #: How a sensing unit pairs its elements: "row" (each row's reference against the
 #: row's other elements) or "column" (one row of references, each against the element
 #: beside it across the rows: the two tips at one distance along the row).
