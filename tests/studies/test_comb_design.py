@@ -545,3 +545,29 @@ def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):
     assert [s.geometry for s in first.slots] == [s.geometry for s in fresh.slots]
     assert errors[0] == errors[1] and errors[0]
 
+
+
+@pytest.mark.parametrize("k_target", [2.0, 5.5, 11.3, 48.0, 300.0])
+def test_a_solved_web_is_the_grid_web_whose_half_step_cell_holds_the_root(k_target):
+    """The web search's answer on the 1 um grid: K half a step below it falls short of the
+    target and K half a step above it does not (K rises with the web), as Brent's root
+    rounded to the grid gives it; a target no web in the bracket reaches gives None."""
+    from dataclasses import replace
+
+    from scipy.optimize import brentq
+
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies.comb_design import WEB_STEP_MM, closed_form_k, solved_web
+
+    plan = plan_from_dict(BASE)
+    g, material = plan.slots[0].geometry, plan.material
+
+    def k(t: float) -> float:
+        return closed_form_k(replace(g, web_thickness_mm=t), material)
+
+    web = solved_web(g, material, k_target, 0.02, 1.0)
+    assert k(web - WEB_STEP_MM / 2) < k_target <= k(web + WEB_STEP_MM / 2)
+    root = brentq(lambda t: k(t) - k_target, 0.02, 1.0, xtol=1e-12)
+    assert web == round(root / WEB_STEP_MM) * WEB_STEP_MM
+    assert solved_web(g, material, k(1.0) * 1.01, 0.02, 1.0) is None
+    assert solved_web(g, material, k(0.02) * 0.99, 0.02, 1.0) is None
