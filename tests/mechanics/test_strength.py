@@ -96,7 +96,7 @@ def test_papers_8mm_arm_at_2N_is_above_6061_yield(plan):
     rec = next(r for r in plan_strength(plan, reference_load=PAPER_LOAD) if r.arm_length_mm == 8.0)
     nominal = float(nominal_stress_per_newton(0.25, 8.0, 3.0)) * PAPER_LOAD_N
     assert nominal == pytest.approx(512.0)  # ~500 MPa in the web
-    assert rec.stress_MPa_at_paper_load > plan.material.yield_strength_MPa
+    assert rec.stress_MPa_at_reference_load > plan.material.yield_strength_MPa
     assert any(w.startswith("at the paper's 2 N the web reaches") and "above the yield strength" in w
                for w in rec.warnings)
     # the rated full-scale force (fatigue-bound) keeps the gauge below its fatigue strain
@@ -107,11 +107,11 @@ def test_the_general_code_gives_no_load_of_its_own(plan):
     """A stress at a reference load only when the caller gives one: the
     paper's load is no default, not even for the paper's design."""
     for rec in plan_strength(plan):
-        assert rec.stress_MPa_at_paper_load is None and not any("paper" in w for w in rec.warnings)
-    assert all("stress_MPa_at_paper_load" not in r for r in strength_summary(plan))
+        assert rec.stress_MPa_at_reference_load is None and not any("paper" in w for w in rec.warnings)
+    assert all("stress_MPa_at_reference_load" not in r for r in strength_summary(plan))
     rec = plan_strength(plan, reference_load=ReferenceLoad(1.0, "a 1 N test"))[3]
-    assert rec.stress_MPa_at_paper_load == pytest.approx(rec.stress_MPa_per_N)
-    assert rec.yield_safety_factor_at_paper_load == pytest.approx(
+    assert rec.stress_MPa_at_reference_load == pytest.approx(rec.stress_MPa_per_N)
+    assert rec.yield_safety_factor_at_reference_load == pytest.approx(
         plan.material.yield_strength_MPa / rec.stress_MPa_per_N)
 
 
@@ -282,7 +282,7 @@ def test_a_design_that_does_not_cite_the_paper_has_no_figures_at_the_papers_load
     plan = load_project(example).plan
     assert paper_load_of(plan) is None
     records = plan_strength(plan, reference_load=paper_load_of(plan))
-    assert records and all(r.stress_MPa_at_paper_load is None for r in records)
+    assert records and all(r.stress_MPa_at_reference_load is None for r in records)
     assert all("paper" not in key for r in records for key in r.as_json())
 
 
@@ -329,3 +329,13 @@ def test_part_strength_is_each_parts_first_element_of_plan_strength(plan):
     for name, record in parts.items():
         first = next(r for r in records if r.part_name == name)
         assert json.dumps(dataclasses.asdict(record)) == json.dumps(dataclasses.asdict(first))
+
+
+def test_a_strength_record_names_no_paper_in_its_fields():
+    """The record every design's strength reads (the API's too) names its reference load
+    by what it is, not by the paper whose design has one."""
+    import dataclasses
+
+    from tactcad.mechanics.element_strength import StrengthRecord
+
+    assert not [f.name for f in dataclasses.fields(StrengthRecord) if "paper" in f.name]

@@ -20,13 +20,13 @@ def test_the_paper_is_one_registered_source():
 def test_a_new_design_has_no_reference_load_and_its_records_none():
     plan = load_design(TI)
     assert reference_load_of(plan) is None
-    assert not any("stress_MPa_at_paper_load" in r for r in strength_summary(plan))
+    assert not any("stress_MPa_at_reference_load" in r for r in strength_summary(plan))
 
 
 def test_the_paper_design_keeps_its_load():
     plan = load_design(DEFAULT_DESIGN)
     assert reference_load_of(plan).force_N == 2.0
-    assert all("stress_MPa_at_paper_load" in r for r in strength_summary(plan))
+    assert all("stress_MPa_at_reference_load" in r for r in strength_summary(plan))
 
 
 def test_a_taken_name_is_refused():

@@ -89,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
               f"{r.yield_safety_factor_at_full_scale:>5.2f} "
               f"{r.gauge_strain_at_full_scale * 1e6:>10.0f} "
               f"{r.tip_deflection_mm_at_full_scale * 1e3:>7.1f}"
-              + (f" {r.stress_MPa_at_paper_load:>10.0f}" if load else ""))
+              + (f" {r.stress_MPa_at_reference_load:>10.0f}" if load else ""))
     print(f"rated full-scale force {judged['full_scale_force_N']:g} N "
           f"({judged['reason']}): {'met' if judged['met'] else 'NOT met'}; the lowest element "
           f"force limit is {judged['element_force_limit_N']:.3g} N, bound by "

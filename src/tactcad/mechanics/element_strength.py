@@ -366,8 +366,8 @@ class StrengthRecord:
     gauge_fatigue_force_N: float
     # at the caller's reference load (the paper's design load for the paper's
     # design: tactcad.paper.paper_load); None without one
-    stress_MPa_at_paper_load: float | None
-    yield_safety_factor_at_paper_load: float | None
+    stress_MPa_at_reference_load: float | None
+    yield_safety_factor_at_reference_load: float | None
     warnings: tuple[str, ...] = field(default=())
     fatigue_strength_at_notch_MPa: float | None = None
     fatigue_surface_factor: float | None = None
@@ -377,8 +377,8 @@ class StrengthRecord:
         figures at the reference load only when there is one."""
         d = asdict(self)
         d["warnings"] = list(self.warnings)
-        if self.stress_MPa_at_paper_load is None:
-            del d["stress_MPa_at_paper_load"], d["yield_safety_factor_at_paper_load"]
+        if self.stress_MPa_at_reference_load is None:
+            del d["stress_MPa_at_reference_load"], d["yield_safety_factor_at_reference_load"]
         return d
 
 
@@ -493,8 +493,8 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         fatigue_strength_at_notch_MPa=None if notch is None else notch.strength_MPa,
         fatigue_surface_factor=None if notch is None else notch.surface_factor,
         gauge_fatigue_force_N=settings.gauge.fatigue_strain / es.read_strain_per_N(),
-        stress_MPa_at_paper_load=s_ref,
-        yield_safety_factor_at_paper_load=None if s_ref is None else y / s_ref,
+        stress_MPa_at_reference_load=s_ref,
+        yield_safety_factor_at_reference_load=None if s_ref is None else y / s_ref,
         warnings=tuple(warn))
 
 

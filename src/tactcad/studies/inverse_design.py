@@ -1030,14 +1030,16 @@ def with_reasons_that_hold(data: dict[str, Any], carried: Mapping[str, str]) -> 
     """Replace, in ``data``'s ``[assumptions]``, each reason still as it was
     carried from the base design (``carried``) that quotes other values than
     its field's own in this design (:func:`quotes_not_its_own`), e.g. the
-    base's "2 x 3 mm contact face" in the tip height's reason, by a pointer
-    that names them: a reason is derived from the design it stands in."""
+    base's contact face in the tip height's reason, by a pointer
+    that says so without repeating them (they are the base design's, the paper's when it is
+    the base): a reason is derived from the design it stands in."""
     why = data.get("assumptions", {})
     for key, text in carried.items():
         quoted = quotes_not_its_own(key, text, data) if why.get(key) == text else []
         if quoted:
-            why[key] = (f"Kept from the base design, whose reason quotes {', '.join(quoted)}: "
-                        "values of the base design, not checked for this one.")
+            why[key] = ("Kept from the base design, whose reason quotes values this design "
+                        "does not have (left out, not checked for this one): state this "
+                        "value's own reason here.")
 
 
 def with_grid(data: Mapping[str, Any], rows: int | None, columns: int | None) -> dict[str, Any]:
