@@ -60,18 +60,35 @@ def test_the_rows_cut_process_is_searched_refused_by_its_own_limits_and_written(
     assert min(written["comb"]["web_thicknesses_mm"]) >= written["sheet"]["thickness_mm"]
 
 
+def full_scale_force_verdict(path: Path) -> str:
+    """The closed form's verdict on a written design's full-scale force."""
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies.verification import verification_matrix
+    from tactcad.vocabulary.schema import read_toml
+
+    plan = plan_from_dict(read_toml(path, "design file"), source=str(path))
+    return next(r["verdict"] for r in verification_matrix(plan, "closed-form",
+                                                          envelope_mm=array_envelope_mm(plan))
+                if r["requirement"] == "full_scale_force_N")
+
+
 @pytest.mark.slow  # three refusals, each bracketing its force by whole searches
 def test_a_comb_refusals_force_is_the_searchs_frontier_whatever_was_asked(tmp_path):
-    """Asked 0.2 N or 0.3 N, the refusal names one force; 5 % above it is refused."""
-    def asked(force):
+    """Asked 0.2 N or 0.3 N, the refusal names one force, the largest a comb carries as the
+    closed form decides it: pasted, it designs a comb whose force passes; 5 % above it, a
+    comb's force is no longer decided (or none is designed)."""
+    def asked(force, out):
         r = run_cli(*GRASPER_CASE, "--jaw", "10", "--full-scale-force", force, "--out",
-                    str(tmp_path / "x.toml"), "--json")
+                    str(tmp_path / out), "--json")
         return r.returncode, json.loads(r.stdout)
-    named = {asked(f)[1]["error"]["allowed"] for f in ("0.2", "0.3")}
+    named = {asked(f, "x.toml")[1]["error"]["allowed"] for f in ("0.2", "0.3")}
     assert len(named) == 1, named
     frontier = float(named.pop().split()[-1])
-    code, _ = asked(f"{frontier * 1.05:.4g}")
-    assert code == 2
+    code, _ = asked(f"{frontier:g}", "at.toml")
+    assert code == 0 and full_scale_force_verdict(tmp_path / "at.toml") == "pass"
+    code, _ = asked(f"{frontier * 1.05:.4g}", "above.toml")
+    assert code == 2 or full_scale_force_verdict(tmp_path / "above.toml") != "pass"
 
 
 def design_for_jaw_file(folder, name: str, table: str) -> tuple[dict, dict]:

@@ -124,12 +124,10 @@ class ForceBound:
         """True when the comb fails at a full-scale force of ``force_N`` (N) by what this
         bound holds (a False says only that the comb must be judged at that force).
 
-        The full-scale-force record's verdict (:func:`tactcad.mechanics.verdicts.verdict`
-        of margin F_binding / F - 1 and its error) and the gauge rule F_limit < F (1 + e),
-        as :func:`judge_limits` applies them.
+        The full-scale-force record's rule (the force it carries below the force asked:
+        failed, or undecided but :func:`nominally_short`) and the gauge rule
+        F_limit < F (1 + e), as :func:`judge_limits` applies them.
         """
-        from tactcad.mechanics.verdicts import verdict
-
         if self.refused:
             return True
         slack = 1.0 + BOUND_SLACK_REL
@@ -137,12 +135,9 @@ class ForceBound:
             return True
         if self.binding_force_N is None:
             return False
-        margin = self.binding_force_N * slack / force_N - 1.0
-        margin_or_none = margin if math.isfinite(margin) else None
-        error = None if self.binding_error_rel is None else \
-            self.binding_error_rel + BOUND_SLACK_REL
-        return verdict(margin_or_none, error, 0.0,
-                       self.binding_force_N * slack >= force_N) == "fail"
+        # the record fails, or is short of the force in its prediction
+        # (:func:`nominally_short`), either way below the force asked
+        return self.binding_force_N * slack < force_N
 
 
 #: How far (relative) a :class:`ForceBound` must fail a force to skip judging the comb:
@@ -607,7 +602,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
         records = verification_matrix(plan, "closed-form", envelope_mm=env)
     except DesignErrors as exc:  # a table the plan holds refuses it (the jaw's, say)
         return (None, *refused_fields(exc), -math.inf, None, None)
-    failed = [r for r in records if r["verdict"] == "fail"]
+    failed = [r for r in records if r["verdict"] == "fail" or nominally_short(r)]
     fails = [failure_line(r) for r in failed]
     codes = [requirement_limit(r["requirement"]) for r in failed]
     force = d["requirements"]["full_scale_force_N"]
@@ -629,6 +624,15 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
     bound = force_bound(records, limits)
     return (plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0),
             rated_force_N(d, bound), bound)
+
+
+def nominally_short(record: dict) -> bool:
+    """Whether a verification record is the full-scale force's, undecided at its level but
+    short of the force asked in its prediction (margin below 0 within its error): a comb
+    rated above what its binding limit carries, which a higher level may only fail, so no
+    candidate counts with it and no refusal offers such a force to paste."""
+    return (record["requirement"] == "full_scale_force_N" and record["verdict"] == "undecided"
+            and record["margin_rel"] is not None and record["margin_rel"] < 0.0)
 
 
 def rated_force_N(d: dict, bound: ForceBound) -> float | None:
@@ -1085,7 +1089,8 @@ def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Ta
                 order: list[tuple[float, float]] | None = None,
                 bounds: dict[tuple[float, float], ForceBound | None] | None = None) -> bool:
     """True when some sheet's comb at some K_m scale counts at a full-scale force of
-    ``force_N`` (N); tried in ``order`` ((sheet mm, K_m scale) pairs; default every sheet
+    ``force_N`` (N) and carries it as the closed form decides it (:func:`carries_decided`:
+    the force a refusal offers to paste designs a comb that passes); tried in ``order`` ((sheet mm, K_m scale) pairs; default every sheet
     of :func:`sheets_of` at every scale), stopping at the first that counts.
 
     ``bounds`` ((sheet, scale) -> :class:`ForceBound`, kept over one refusal's calls):
@@ -1102,9 +1107,26 @@ def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Ta
                 continue
             c = candidate(base, sheet, scale, columns, room, at, grade, envelope_of, None)
             known[(sheet, scale)] = c.force_bound
-            if c.plan is not None and not c.failures:
+            if c.plan is not None and not c.failures and carries_decided(c):
                 return True
     return False
+
+
+def carries_decided(c: CombCandidate) -> bool:
+    """Whether a candidate's full-scale-force record passes at the closed form, beyond its
+    error (margin >= error estimate): a force offered to paste is one the comb it designs
+    carries as ``verify`` decides it, not one a higher level may yet fail.
+
+    Args:
+        c: a judged candidate.
+
+    Returns:
+        True when its margin clears the binding limit's error (an unknown error: when the
+        margin is not negative).
+    """
+    bound = c.force_bound
+    error = bound.binding_error_rel if bound is not None else None
+    return c.force_margin_rel >= (error if error is not None and math.isfinite(error) else 0.0)
 
 
 def bounds_of(tried: list[CombCandidate]) -> dict[tuple[float, float], ForceBound | None]:
