@@ -186,3 +186,26 @@ def test_fem3d_computes_its_stored_corner_again():
     assert f3.modes[0].family == corner["first_family"] == "out-of-plane"
     assert abs(_closed_form(g, mat).first_Hz / in_plane - 1.0) <= _closed_form(
         g, mat).error_estimate_rel
+
+
+def test_each_closed_form_mode_carries_its_own_error_estimate():
+    """The closed form's two families are estimated each its own way: the out-of-plane
+    mode's error is its bounds' spread (far above the in-plane Rayleigh quotient's), said
+    for that mode, not the first's error for both."""
+    from tactcad.design.array_plan import EXAMPLES, plan_from_dict
+    from tactcad.mechanics.closed_form import estimate_closed_form
+    from tactcad.mechanics.modal_closed_form import (estimate_modal_closed_form,
+                                                     out_of_plane_frequency)
+    from tactcad.vocabulary.schema import read_toml
+
+    plan = plan_from_dict(read_toml(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml", "d"))
+    g, material = plan.slots[1].geometry, plan.material
+    r = estimate_modal_closed_form(g, material, modes=2)
+    half_k = 0.5 * estimate_closed_form(g, material).error_estimate_rel
+    errors = {m.family: m.error_estimate_rel for m in r.modes}
+    assert errors["in-plane"] == pytest.approx(half_k + SHAPE_ERROR_REL)
+    assert errors["out-of-plane"] == pytest.approx(half_k + out_of_plane_frequency(g, material)[1])
+    assert errors["out-of-plane"] > 3 * errors["in-plane"]
+    assert r.error_estimate_rel == r.modes[0].error_estimate_rel
+    assert [m["frequency_Hz_error_rel"] for m in r.as_json()["modes"]] == \
+        [m.error_estimate_rel for m in r.modes]

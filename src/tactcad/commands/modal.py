@@ -109,10 +109,13 @@ def run_modal(args: argparse.Namespace) -> int:
           + (f" and {args.tip_mass_mg:g} mg at the tip" if args.tip_mass_mg else "") + ")")
     for rec in records:
         els = ", ".join(str(n) for n in rec["elements"])
-        freqs = ", ".join(f"{m['frequency_Hz']:.1f} ({m['family']})" for m in rec["modes"])
+        freqs = ", ".join(f"{m['frequency_Hz']:.1f} ({m['family']}"
+                          + (f" +/- {100 * m['frequency_Hz_error_rel']:.1f} %"
+                             if "frequency_Hz_error_rel" in m else "") + ")"
+                          for m in rec["modes"])
         bare = (f"; {rec['bare_first_Hz']:.1f} Hz without the {1e3 * rec['added_mass_g']:.3g} mg"
                 if rec["bare_first_Hz"] is not None else "")
-        print(f"  {rec['part']} (element {els}): {freqs} Hz{bare}; error estimate "
+        print(f"  {rec['part']} (element {els}): {freqs} Hz{bare}; the first's error estimate "
               f"{100 * rec['first_Hz_error_rel']:.2f} %, {rec['wall_time_s']:.3g} s")
     print(f"lowest first frequency: {lowest['first_Hz']:.1f} Hz ({lowest['part']})")
     return 0

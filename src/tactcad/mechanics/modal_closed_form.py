@@ -310,9 +310,9 @@ def estimate_modal_closed_form(g: ElementGeometry, material: Material, *,
     Returns:
         :class:`~tactcad.mechanics.modal_result.ModalResult` with the modes
         (Hz), ascending, the frequency without the added masses
-        (``bare_first_Hz``) and the error estimate of the first (half the K
-        error + :data:`SHAPE_ERROR_REL` in the plane; half the K error + the
-        bounds' half-spread out of it, :func:`out_of_plane_frequency`).
+        (``bare_first_Hz``) and the error estimate of each mode and of the first
+        (half the K error + :data:`SHAPE_ERROR_REL` in the plane; half the K error +
+        the bounds' half-spread out of it, :func:`out_of_plane_frequency`).
 
     Raises:
         DesignError: the material has no density. ValueError: modes < 1.
@@ -337,7 +337,8 @@ def estimate_modal_closed_form(g: ElementGeometry, material: Material, *,
                     (f_out, "out-of-plane", f_out_bare, out_error)])[:max(1, min(modes, 2))]
     total = sum(p.mass_g for p in added_masses)
     return ModalResult(element=element, model="closed-form",
-                       modes=tuple(Mode(i + 1, f, fam) for i, (f, fam, _, _) in enumerate(found)),
+                       modes=tuple(Mode(i + 1, f, fam, 0.5 * k.error_estimate_rel + shape_error)
+                                   for i, (f, fam, _, shape_error) in enumerate(found)),
                        error_estimate_rel=0.5 * k.error_estimate_rel + found[0][3],
                        wall_time_s=time.perf_counter() - t0,
                        added_mass_g=total, bare_first_Hz=found[0][2] if added_masses else None,

@@ -63,9 +63,16 @@ class Mode:
     number: int
     frequency_Hz: float
     family: str
+    #: this mode's own relative error estimate, where the level gives each mode one (the
+    #: closed form: its two families are estimated each its own way); None: only the
+    #: first's, :attr:`ModalResult.error_estimate_rel`
+    error_estimate_rel: float | None = None
 
     def as_json(self) -> dict:
-        return {"mode": self.number, "frequency_Hz": self.frequency_Hz, "family": self.family}
+        out = {"mode": self.number, "frequency_Hz": self.frequency_Hz, "family": self.family}
+        if self.error_estimate_rel is not None:
+            out["frequency_Hz_error_rel"] = self.error_estimate_rel
+        return out
 
 
 @dataclass(frozen=True)
