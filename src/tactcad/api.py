@@ -447,6 +447,72 @@ class Project:
             self._report = _quiet
 
     @keyword_errors
+    def readout(self, model: str = "closed-form") -> dict:
+        """Every element's read-out chain, as ``tactcad readout --json`` gives it: gauge
+        strain over the grid (1/N), K_v (V/N), K_v/K (V/mm), the force resolution (N)
+        and the K_obj resolution (relative).
+
+        Args:
+            model: ladder level of K and the strain field (``closed-form``, ``beam``,
+                ``fem2d``, ``fem3d``).
+
+        Raises:
+            UnknownModelError: ``model`` is not a ladder level.
+        """
+        from tactcad.paper.table1 import with_measured_sensitivities
+        from tactcad.studies.project_reports import readout_record
+
+        report = readout_record(self.plan, model, self._report)
+        return plain(with_measured_sensitivities(report, self.plan, model).as_json())
+
+    @keyword_errors
+    def thermal(self, model: str = "closed-form", element: int | None = None) -> dict:
+        """Every element's (or one element's) zero and span drift per kelvin, self-heating
+        offset and K_obj error per kelvin, as ``tactcad thermal --json`` gives them.
+
+        Args:
+            model: ladder level. element: one element's number (None: all).
+
+        Raises:
+            DesignError: ``element`` not an element of the design.
+        """
+        from tactcad.studies.project_reports import thermal_record
+
+        if element is not None and (isinstance(element, bool) or not isinstance(element, int)):
+            from tactcad.errors import DesignError
+
+            raise DesignError("--element", element, "an integer element number")
+        return plain(thermal_record(self.plan, model, element).as_json())
+
+    @keyword_errors
+    def budget(self, model: str = "closed-form", force_N: float | None = None,
+               delta_T_K: float | None = None) -> dict:
+        """The K_obj error budget of every sensing unit and of the array, as
+        ``tactcad budget --json`` gives it (relative errors, 1 sigma; N, K).
+
+        Args:
+            model: ladder level of K and the gauge strain. force_N: force on the reference
+                at the reading (N; None: the design's full-scale force). delta_T_K:
+                temperature step between tare and reading (K; None: the budget's default).
+
+        Raises:
+            DesignError: ``force_N`` or ``delta_T_K`` out of range.
+        """
+        from tactcad.errors import DesignError
+        from tactcad.studies.project_reports import budget_record
+
+        # the options' own ranges (``budget --force``, ``--delta-T``), named as keywords
+        for name, value, (lo, hi), lo_open in (("--force-N", force_N, (0.0, 1000.0), True),
+                                               ("--delta-T-K", delta_T_K, (0.0, 100.0), False)):
+            if value is None:
+                continue
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not lo <= value <= hi or (lo_open and value <= lo):
+                raise DesignError(name, value, f"{lo:g} {'<' if lo_open else '<='} value "
+                                               f"<= {hi:g} ({'N' if lo_open else 'K'})")
+        return plain(budget_record(self.plan, model, force_N, delta_T_K)[0])
+
+    @keyword_errors
     def verify(self, model: str = "auto", progress: Progress | None = None,
                cache: str | Path | None | bool = True) -> "Verification":
         """The verification matrix of the design's requirements.

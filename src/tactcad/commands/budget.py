@@ -76,8 +76,7 @@ def run(args: argparse.Namespace) -> int:
     if shown is not None:
         return shown
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.in_use.kobj_budget import kobj_budget
-    from tactcad.studies.verification import calibration_gauge
+    from tactcad.studies.project_reports import budget_record
     from tactcad.studies.verification import requirements_of
 
     plan = plan_from_args(args)
@@ -86,12 +85,7 @@ def run(args: argparse.Namespace) -> int:
     req = requirements_of(plan)
     force = req.full_scale_force_N if args.force is None else args.force
     progress(f"budget of {plan.name} at {force:g} N, {args.delta_T:g} K ({args.model})")
-    budget = kobj_budget(plan, req.kobj_range_N_per_mm, force, args.delta_T, args.model,
-                         calibrations=cal, points=args.points,
-                         force_gauge=calibration_gauge(plan))
-    record = {**budget.as_json(), "kobj_range_reason": req.reasons["kobj_range_N_per_mm"],
-              "force_reason": "--force" if args.force is not None
-              else f"full-scale force: {req.reasons['full_scale_force_N']}"}
+    record, budget = budget_record(plan, args.model, args.force, args.delta_T, args.points, cal)
     text = render(budget)
     past = past_rating_words(force, req.full_scale_force_N, overload_forces(plan, budget))
     if past:  # a budget at a force the design is not rated for: said, in the text and --json

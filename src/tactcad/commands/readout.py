@@ -37,19 +37,12 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("readout", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
-    from dataclasses import replace
-
-    from tactcad.design.requirements_section import cites_paper
-    from tactcad.mechanics.readout_chain import readout_report
-    from tactcad.studies.verification import requirements_of
+    from tactcad.paper.table1 import with_measured_sensitivities
+    from tactcad.studies.project_reports import readout_record
 
     plan = plan_from_args(args)
-    report = readout_report(plan, requirements_of(plan), args.model, progress_from_args(args))
-    if cites_paper(plan.raw):  # the paper's measured sensitivities, for its design only
-        from tactcad.paper.table1 import readout_table1
-
-        report = replace(report, table1=readout_table1(report.records, report.chain, plan,
-                                                       args.model))
+    report = with_measured_sensitivities(
+        readout_record(plan, args.model, progress_from_args(args)), plan, args.model)
     if args.json:
         print(dumps(report.as_json(), indent=1))
         return 0

@@ -8,7 +8,6 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, p
                               product_view)
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, keep_option_defaults
-from tactcad.errors import DesignError
 from tactcad.mechanics.ladder import models
 
 
@@ -42,19 +41,9 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("thermal", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
-    from dataclasses import replace
+    from tactcad.studies.project_reports import thermal_record
 
-    from tactcad.mechanics.thermal_drift import thermal_report
-    from tactcad.studies.verification import requirements_of
-
-    plan = plan_from_args(args)
-    report = thermal_report(plan, requirements_of(plan), args.model)
-    if args.element is not None:
-        chosen = [r for r in report.records if r["element"] == args.element]
-        if not chosen:
-            raise DesignError("--element", args.element, f"1 ... {len(report.records)}",
-                              "an element number of the design")
-        report = replace(report, records=chosen)
+    report = thermal_record(plan_from_args(args), args.model, args.element)
     if args.json:
         print(dumps(report.as_json(), indent=1))
         return 0

@@ -370,3 +370,23 @@ def table1_force_comparison(plan: Plan, model: str = "closed-form") -> list[dict
                     "stress_MPa_at_max_support_force_as_built": s_max,
                     "yield_safety_factor_at_max_support_force_as_built": y / s_max})
     return out
+
+
+def with_measured_sensitivities(report, plan: Plan, model: str):
+    """A read-out report (:func:`tactcad.studies.project_reports.readout_record`) with the
+    paper's measured sensitivities beside the predicted ones, for the paper's design only
+    (a design that does not cite the paper gets its report as it is).
+
+    Args:
+        report: the read-out report. plan: its design's plan. model: its ladder level.
+
+    Returns:
+        The report, with ``table1`` set for the paper's design.
+    """
+    from dataclasses import replace
+
+    from tactcad.design.requirements_section import cites_paper
+
+    if not cites_paper(plan.raw):
+        return report
+    return replace(report, table1=readout_table1(report.records, report.chain, plan, model))

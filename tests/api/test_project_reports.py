@@ -1,0 +1,58 @@
+"""A metal array's read-out, thermal drift and K_obj budget from the Python API: the same
+numbers as the commands' ``--json``, and refusals naming the keyword."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from conftest import run_cli
+
+import tactcad
+from tactcad.design.array_plan import EXAMPLES
+from tactcad.errors import DesignError
+
+DESIGN = EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml"
+
+
+def command_json(*argv: str) -> dict:
+    r = run_cli(*argv, "--design", str(DESIGN), "--json")
+    assert r.returncode == 0, r.stderr
+    return json.loads(r.stdout)
+
+
+def without_seconds(record):
+    """A record less its wall times, which no two runs share, and the warnings the
+    command line adds to every --json (the API raises them as Python warnings)."""
+    if isinstance(record, dict):
+        return {k: without_seconds(v) for k, v in record.items()
+                if k not in ("seconds", "wall_time_s", "warnings")}
+    if isinstance(record, list):
+        return [without_seconds(v) for v in record]
+    return record
+
+
+@pytest.mark.parametrize("method, command, kwargs, argv", [
+    ("readout", "readout", {}, ()),
+    ("thermal", "thermal", {"element": 2}, ("--element", "2")),
+    ("budget", "budget", {"delta_T_K": 3.0}, ("--delta-T", "3")),
+])
+def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
+    project = tactcad.load(str(DESIGN))
+    given = getattr(project, method)(**kwargs)
+    printed = command_json(command, *argv)
+    assert json.loads(json.dumps(without_seconds(given))) == without_seconds(printed)
+
+
+@pytest.mark.parametrize("method, kwargs, named", [
+    ("budget", {"force_N": -1.0}, "force_N"),
+    ("budget", {"delta_T_K": 500}, "delta_T_K"),
+    ("thermal", {"element": 99}, "element"),
+    ("thermal", {"element": "2"}, "element"),
+])
+def test_the_apis_reports_refuse_naming_the_keyword(method, kwargs, named):
+    project = tactcad.load(str(DESIGN))
+    with pytest.raises(DesignError) as caught:
+        getattr(project, method)(**kwargs)
+    assert caught.value.field == named
