@@ -954,16 +954,25 @@ class Element:
             **options: the level's own options (e.g. ``progress`` for FEM).
 
         Returns:
-            :class:`~tactcad.mechanics.stiffness_result.StiffnessResult`: K (N/mm), gauge
-            strain per newton (1/N), relative error estimate, wall time (s).
+            :class:`~tactcad.mechanics.stiffness_result.StiffnessResult`: K (N/mm), face
+            strain per newton (1/N), relative error estimate, wall time (s) and, for an
+            element carrying a gauge, the grid strain per newton at ``model`` (1/N,
+            magnitude; ``tactcad stiffness``'s and ``readout``'s ``grid_strain_per_N``).
 
         Raises:
             UnknownModelError: ``model`` is not a ladder level.
         """
         from tactcad.mechanics.ladder import estimate
 
-        return estimate(model, self.geometry, self.project.plan.material, element=self.number,
-                        **options)
+        plan = self.project.plan
+        result = estimate(model, self.geometry, plan.material, element=self.number, **options)
+        if result.grid_strain_per_N is not None or self.geometry.gauge is None:
+            return result
+        # the closed form and the beam level mesh no layer: the read-out's grid strain
+        from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
+
+        read = grid_strain_per_N(self.geometry, plan.material, readout_chain(plan), model)
+        return replace(result, grid_strain_per_N=abs(float(read["grid"])))
 
     @keyword_errors
     def modes(self, model: str = "closed-form", modes: int = 3,

@@ -1,8 +1,10 @@
 """One name, one quantity: a strain, stiffness or stress name in the commands' ``--json``
 means the same figure in every command that prints it at the same level
 (docs/reference/glossary.md): ``stiffness``'s, ``readout``'s and ``strength``'s, at the
-closed form, on the macro array and the Ti array. ``gauge_strain_per_N``, which meant the
-face strain in one command and the grid strain in another, is printed by none."""
+closed form, on the macro array and the Ti array; the grid strain also at fem2d on the Ti
+array (``thermal``'s too), and in the Python API's ``Element.stiffness()``.
+``gauge_strain_per_N``, which meant the face strain in one command and the grid strain in
+another, is printed by none."""
 
 from __future__ import annotations
 
@@ -98,3 +100,51 @@ def test_the_face_strains_say_where_and_whether_as_cut(printed):
         assert abs(r["grid_strain_per_N"]) > 1.05 * face
         assert r["face_mean_over_centre_as_cut"] == pytest.approx(
             r["face_mean_strain_as_cut_per_N"] / r["face_strain_as_cut_per_N"], rel=1e-12)
+
+
+@pytest.fixture(scope="module")
+def printed_fem2d() -> dict:
+    """The Ti array's figures at fem2d: ``readout``, ``strength`` and ``thermal`` of every
+    element, ``stiffness`` of one element of each distinct part (a few seconds)."""
+    readout = _json("readout", "--design", TI, "--model", "fem2d", "--no-cache")
+    first_of_part = {}
+    for r in readout["elements"]:
+        first_of_part.setdefault(r["part"], r["element"])
+    numbers = sorted(first_of_part.values())
+    return {"readout": readout,
+            "strength": _json("strength", "--design", TI, "--model", "fem2d", "--no-cache"),
+            "thermal": _json("thermal", "--design", TI, "--model", "fem2d", "--no-cache"),
+            "stiffness": {n: _json("stiffness", "--design", TI, "--element", n, "--model",
+                                   "fem2d", "--no-cache") for n in numbers}}
+
+
+def test_the_grid_strain_is_one_figure_at_fem2d(printed_fem2d):
+    """At fem2d the grid strain is the grid's plane over the grid's area (the line the plane
+    solve gives times the fem3d-fitted width factor) in every command, ``stiffness`` too."""
+    readout = {r["element"]: abs(r["grid_strain_per_N"])
+               for r in printed_fem2d["readout"]["elements"]}
+    thermal = {r["element"]: abs(r["grid_strain_per_N"])
+               for r in printed_fem2d["thermal"]["elements"]}
+    strength = {r["element"]: r["gauge_strain_at_full_scale"] / r["full_scale_force_N"]
+                for r in printed_fem2d["strength"]["elements"]}
+    assert printed_fem2d["readout"]["model"] == printed_fem2d["thermal"]["model"] == "fem2d"
+    assert len(printed_fem2d["stiffness"]) >= 2  # the Ti array's two arm lengths
+    assert {r["model"] for r in printed_fem2d["strength"]["elements"]} == {"fem2d"}
+    for n, s in printed_fem2d["stiffness"].items():
+        assert s["model"] == "fem2d"
+        assert s["grid_strain_per_N"] == pytest.approx(readout[n], rel=1e-12)
+        assert thermal[n] == pytest.approx(readout[n], rel=1e-12)
+        assert strength[n] == pytest.approx(readout[n], rel=1e-12)
+
+
+def test_the_api_gives_stiffness_its_grid_strain_at_the_closed_form(printed):
+    """``Element.stiffness()`` (the closed form) carries the grid strain ``tactcad stiffness``
+    prints for that element."""
+    import tactcad
+
+    project = tactcad.load(printed["design"])
+    for n, s in printed["stiffness"].items():
+        api = project.element(n).stiffness()
+        assert api.model == s["model"] == "closed-form"
+        assert api.grid_strain_per_N is not None
+        assert api.grid_strain_per_N == pytest.approx(s["grid_strain_per_N"], rel=1e-12)

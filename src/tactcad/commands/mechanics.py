@@ -71,12 +71,11 @@ def run_stiffness(args: argparse.Namespace) -> int:
         vtu = write_element_vtu(args.vtk, slot.geometry, plan.material, args.model).path
         progress_from_args(args)(f"wrote {vtu} (displacement, von Mises stress under 1 N)")
     with_gauge = slot.geometry.gauge is not None
-    grid, grid_error = r.grid_strain_per_N, None
-    if with_gauge:  # what the grid reads, as `readout` gives it at this level, with its error
+    grid, grid_error = r.grid_strain_per_N, None  # what the grid reads, as `readout` gives it
+    if with_gauge:  # its error at this level
         from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
         read = grid_strain_per_N(slot.geometry, plan.material, readout_chain(plan), args.model)
-        grid = abs(read["grid"]) if grid is None else grid
         grid_error = float(read.get("grid_error_rel", read["error_rel"]))
     if args.json:
         out = {**r.as_json(), "grid_strain_per_N": grid, "grid_strain_error_rel": grid_error,

@@ -379,16 +379,10 @@ def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: Read
         return {"grid": vals[-1], "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel,
                 "grid_source": "fem3d with the glue line and carrier meshed: the grid's "
                                "plane averaged over its area"}
-    from tactcad.mechanics.fem.fem2d import fem2d_convergence
-    from tactcad.mechanics.gauge_strain import width_strain_factor
+    from tactcad.mechanics.fem.fem2d import fem2d_convergence, grid_plane_strain_per_N
 
-    conv = fem2d_convergence(g, material)
-    vals = [s.grid_strain / s.force_N for s in conv.solutions]
-    width = width_strain_factor(g.bare(), material, chain.grid_width_mm)
-    return {"grid": width.factor * vals[-1],
-            "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel + width.error_rel,
-            "grid_source": "fem2d with the glue line and carrier meshed: the grid's plane "
-                           "along it, x the fem3d-fitted width factor"}
+    return grid_plane_strain_per_N(fem2d_convergence(g, material), g, material,
+                                   chain.grid_width_mm)
 
 
 # ---------------------------------------------------------------------------
