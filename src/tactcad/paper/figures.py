@@ -73,17 +73,32 @@ def plot_ratio_vs_load(loads_N, ratios: dict[str, list[float]], path: str | Path
     return _finish(plt, fig, ax, "grasping force W (N)", "R", title, path)
 
 
+def place_legend(ax):
+    """The legend beside the axes, right of them, so it never covers a curve however many
+    elements are drawn (one column up to 12 entries, then two).
+
+    Args:
+        ax: the axes, its lines labelled.
+
+    Returns:
+        The legend.
+    """
+    entries = len(ax.get_legend_handles_labels()[1])
+    return ax.legend(fontsize=7, ncol=1 if entries <= 12 else 2, loc="upper left",
+                     bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+
+
 def _finish(plt, fig, ax, xlabel: str, ylabel: str, title: str, path) -> Path:
     """Label, grid and legend the axes, write the PNG (creating its folder), close the figure."""
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    place_legend(ax)
     fig.tight_layout()
     out = Path(path)
     out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out)
+    fig.savefig(out, bbox_inches="tight")  # the legend beside the axes is part of the picture
     plt.close(fig)
     return out
 
