@@ -420,7 +420,8 @@ def test_tip_coplanarity_is_in_the_budget_from_the_drawings_tolerance(ti_plan):
 def test_a_stated_accuracy_gives_the_tip_tolerance_the_drawing_must_hold(ti_plan):
     """The budget drives the drawing: with kobj_accuracy_rel the budget names the tip-height
     tolerance whose uncorrected mismatch fits what the other terms leave; drawn to it, the
-    coplanarity term before correction fills that room."""
+    coplanarity term before correction fills that room at each K_obj in the unit that reads
+    it."""
     from tactcad.design.array_plan import plan_from_dict, with_overrides
 
     req = ti_plan.raw["requirements"]
@@ -431,11 +432,15 @@ def test_a_stated_accuracy_gives_the_tip_tolerance_the_drawing_must_hold(ti_plan
     assert needed is not None and 1e-5 < needed < 0.01  # microns: below what wire EDM holds
     drawn = plan_from_dict(with_overrides(stated.raw, {"tolerances.tip_height_mm": needed}))
     budget = kb.kobj_budget(drawn, rng, force, force_gauge=calibration_gauge(drawn))
+    reading = kb.reading_unit_index(budget.units)
     worst = 0.0
-    for u in budget.units:
-        before = np.array(u["sources"]["tip_coplanarity"]["before_rel"])
+    for i, u in enumerate(budget.units):
+        read = reading == i
+        if not np.any(read):
+            continue
+        before = np.array(u["sources"]["tip_coplanarity"]["before_rel"])[read]
         others = np.array([u["sources"][k]["after_rel"] for k in kb.SOURCE_KEYS
-                           if k != "tip_coplanarity"])
+                           if k != "tip_coplanarity"])[:, read]
         worst = max(worst, float(np.max(np.sqrt(before ** 2 + np.sum(others ** 2, axis=0)))))
     assert worst == pytest.approx(0.1, rel=0.01)
     assert f"+/-{needed:.3g} mm" in budget.notes["tip_coplanarity"]
@@ -516,3 +521,34 @@ def test_a_comb_has_no_stack_crosstalk_model_and_its_budget_says_so(ti_plan):
     stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3,
                              force_gauge=calibration_gauge(ti_plan))
     assert all("not_modelled" not in u["sources"]["stack_crosstalk"] for u in stacked.units)
+
+
+def _unit_record(reference, measuring, others_rel, coplanarity_after_rel):
+    """A unit's budget record with one other term: ``others_rel`` (the RSS of every term but
+    the coplanarity) and the zeroed coplanarity term over a K_obj grid (relative)."""
+    sources = {k: {"after_rel": [0.0] * len(others_rel)} for k in kb.SOURCE_KEYS}
+    sources["calibration"]["after_rel"] = list(others_rel)
+    sources["tip_coplanarity"]["after_rel"] = list(coplanarity_after_rel)
+    rss = np.hypot(others_rel, coplanarity_after_rel)
+    return {"reference_element": reference, "measuring_element": measuring,
+            "sources": sources, "rss_rel": list(rss)}
+
+
+def test_the_tip_tolerance_reads_each_kobj_in_the_unit_that_reads_it():
+    """A unit the array reads no K_obj with (its other terms larger than the accuracy) does
+    not leave the tips 'no room': the accuracy's row passes on the unit that reads each
+    K_obj, so the tolerance is what that unit leaves, and a looser accuracy a looser one."""
+    reads = _unit_record(2, 1, [0.010, 0.012], [0.002, 0.003])
+    spare = _unit_record(2, 3, [0.040, 0.045], [0.002, 0.002])  # never the best
+    residual = {(2, 1): 1e-4, (2, 3): 1e-4}
+    tol = kb.tip_height_tolerance_for_accuracy_mm([reads, spare], 0.03, residual)
+    alone = kb.tip_height_tolerance_for_accuracy_mm([reads], 0.03, residual)
+    assert tol is not None and tol == pytest.approx(alone)
+    assert list(kb.reading_unit_index([reads, spare])) == [0, 0]
+    # the reading unit's room at its worst K_obj (the second): sqrt(0.03^2 - 0.012^2) over a
+    # slope of 0.003 per 1e-4 mm of mismatch, half of it per tip
+    assert tol == pytest.approx(np.sqrt(0.03 ** 2 - 0.012 ** 2) / (0.003 / 1e-4) / 2)
+    looser = kb.tip_height_tolerance_for_accuracy_mm([reads, spare], 0.5, residual)
+    assert looser > tol
+    # no room in the unit that reads a K_obj: none fits
+    assert kb.tip_height_tolerance_for_accuracy_mm([reads, spare], 0.011, residual) is None

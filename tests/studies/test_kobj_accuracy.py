@@ -1,6 +1,7 @@
 """``[requirements] kobj_accuracy_rel``: judged against the K_obj error budget in verify."""
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -71,3 +72,44 @@ def test_a_bad_value_is_refused_naming_the_key_and_the_range(value):
         load(TI, set={"requirements.kobj_accuracy_rel": value})
     text = str(e.value)
     assert "kobj_accuracy_rel" in text and "10" in text
+
+
+#: The Ti example widened to 2 x 4 (a stacked array of two soft elements beside each row's
+#: reference and one past it): the far unit's other terms reach 1.7 % at the top of its range.
+FOUR_COLUMNS = {"array.columns": 4, "arms.lengths_mm": [19.605, 6.196, 19.605, 19.605] * 2,
+                "requirements.kobj_range_N_per_mm": [1.0, 5.0],
+                "requirements.full_scale_force_N": 0.1}
+
+
+def _accuracy_rows(target):
+    """(the kobj_accuracy_rel row, the tip-height row, the budget) of the 2 x 4 array."""
+    from tactcad.api import load
+    from tactcad.studies.verification import (accuracy_budget, element_figures,
+                                              kobj_accuracy_record, requirements_of,
+                                              tip_height_tolerance_record)
+
+    plan = load(TI, set={**FOUR_COLUMNS, "requirements.kobj_accuracy_rel": target}).plan
+    fig = element_figures(plan)
+    req = requirements_of(plan, fig)
+    budget = accuracy_budget(plan, fig, req)
+    return (kobj_accuracy_record(plan, fig, req, budget),
+            tip_height_tolerance_record(plan, fig, budget), budget)
+
+
+def test_an_accuracy_met_by_the_units_that_read_leaves_the_tips_a_tolerance():
+    """One budget decides both rows: an accuracy the array meets (each K_obj read by its best
+    unit) leaves the tip height a tolerance, though a unit that reads none of the range has
+    other terms beyond it."""
+    from tactcad.in_use.kobj_budget import _others_after_sq
+
+    accuracy, tip, budget = _accuracy_rows(0.016)
+    worst_other = max(float(np.sqrt(np.max(_others_after_sq(u)))) for u in budget.units)
+    assert worst_other > 0.016, "the case no longer has a unit beyond the accuracy"
+    assert accuracy["verdict"] == "pass"
+    assert tip["target"] is not None and tip["pass"] and tip["margin_rel"] > 0, \
+        tip["binding_words"]
+
+
+def test_a_looser_accuracy_leaves_a_looser_tip_tolerance():
+    allowances = [_accuracy_rows(a)[1]["target"] for a in (0.016, 0.1, 0.5)]
+    assert None not in allowances and allowances[0] < allowances[1] < allowances[2]

@@ -378,10 +378,16 @@ def _run(args: argparse.Namespace) -> int:
     except DesignError as exc:
         raise as_options(exc, args, design) from None
     if args.kobj_accuracy is not None:
+        from dataclasses import replace
+
         result = with_kobj_accuracy(result, args.kobj_accuracy)
+        # judged on the rigs the written project calibrates on, as verify reads the file
+        result = replace(result, plan=written_plan(result.data, path))
     progress = progress_from_args(args)
     asked = args.verify or DEFAULT_VERIFY
     margins = design_margins(result.plan)
+    if args.kobj_accuracy is not None:  # a miss is not written, as a failed requirement is not
+        refuse_missed_accuracy(margins, args.kobj_accuracy)
     level, records = design_verification(result.plan, asked, margins, progress)
     report = design_report(result, level or "none", progress, margins)
     report["verify"] = verification_summary(asked, level, records)
@@ -772,16 +778,54 @@ def with_kobj_accuracy(result, accuracy_rel: float, refuse: bool = False):
     if refuse:
         from tactcad.assembly.inventory import array_envelope_mm
 
-        row = next((r for r in verification_matrix(plan, "closed-form",
-                                                   envelope_mm=array_envelope_mm(plan))
-                    if r["requirement"] == "kobj_accuracy_rel"), None)
-        if row is not None and row["verdict"] == "fail":
-            reached = row.get("predicted")
-            reached = math.inf if reached is None else float(reached)
-            raise accuracy_refusal(accuracy_rel, reached, "this design",
-                                   "the root sum square of its K_obj error budget after "
-                                   "correction, worst over the K_obj range (tactcad budget)")
+        refuse_missed_accuracy(verification_matrix(plan, "closed-form",
+                                                   envelope_mm=array_envelope_mm(plan)),
+                               accuracy_rel)
     return replace(result, data=data, plan=plan)
+
+
+def written_plan(data, path: Path):
+    """The plan of the design tables ``data`` as its file at ``path`` loads, with the rigs
+    its project gets (their force gauge calibrates its elements, so the K_obj budget reads
+    the calibration ``verify`` reads on the written file).
+
+    Args:
+        data: the design's tables. path: where its file is written.
+
+    Returns:
+        The :class:`~tactcad.design.array_plan.Plan`.
+
+    Raises:
+        DesignErrors: the tables or the companions made for them are refused.
+    """
+    from tactcad.design.project import project_with_design_data
+    from tactcad.project_folder import companion_tables
+
+    return project_with_design_data(copy.deepcopy(dict(data)), path,
+                                    companions=companion_tables).plan
+
+
+def refuse_missed_accuracy(records: list[dict], accuracy_rel: float) -> None:
+    """Refuse a metal design whose ``kobj_accuracy_rel`` row fails at the closed form, as a
+    base design's requirement the closed form fails is refused (:func:`failed_requirements`):
+    the file is not written.
+
+    Args:
+        records: the closed form's verification records (or :func:`design_margins`), each
+            with ``requirement``, ``verdict`` and ``predicted``.
+        accuracy_rel: ``--kobj-accuracy`` (relative).
+
+    Raises:
+        DesignError: the row fails, naming ``--kobj-accuracy``, the accuracy asked and the
+            one reached (the worst root sum square over the K_obj range) to paste.
+    """
+    row = next((r for r in records if r["requirement"] == "kobj_accuracy_rel"), None)
+    if row is None or row["verdict"] != "fail":
+        return
+    reached = row.get("predicted")
+    raise accuracy_refusal(accuracy_rel, math.inf if reached is None else float(reached),
+                           "this design", "the root sum square of its K_obj error budget "
+                           "after correction, worst over the K_obj range (tactcad budget)")
 
 
 def _reachable_grasp(plan, stated) -> list[dict]:
@@ -1317,7 +1361,7 @@ def failed_requirements(plan) -> list[DesignError]:
                         f"{100 * (m['error_estimate_rel'] or 0):.2f} %)",
                         "the base design's requirement, which this design fails at the closed "
                         "form: loosen it with --set or change the targets")
-            for m in design_margins(plan, keys=("target", "predicted"))
+            for m in design_margins(plan)
             if m["verdict"] == "fail"]
 
 
@@ -1513,14 +1557,16 @@ def design_report(result, verify: str, progress=None, margins: list[dict] | None
 
 def design_margins(plan, keys: tuple[str, ...] = ()) -> list[dict]:
     """Each requirement's margin against the closed form's error on the written
-    design (the level ``verify --model auto`` starts at): requirement, margin_rel,
-    error_estimate_rel, verdict and, where undecided, whether climbing the ladder
-    can decide it (``level_fixed``: the same at every level, so it cannot)."""
+    design (the level ``verify --model auto`` starts at): requirement, target, predicted,
+    margin_rel, error_estimate_rel, verdict and, where undecided, whether climbing the
+    ladder can decide it (``level_fixed``: the same at every level, so it cannot). With
+    ``auto`` they are the design's verification records, so they carry the target and the
+    prediction its report words a failure with."""
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.studies.verification import verification_matrix
 
-    return [{k: r[k] for k in ("requirement", "margin_rel", "error_estimate_rel", "verdict",
-                               "level_fixed", *keys)}
+    return [{k: r[k] for k in ("requirement", "target", "predicted", "margin_rel",
+                               "error_estimate_rel", "verdict", "level_fixed", *keys)}
             for r in verification_matrix(plan, "closed-form",
                                          envelope_mm=array_envelope_mm(plan))]
 

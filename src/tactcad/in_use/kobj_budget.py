@@ -70,8 +70,10 @@ every K_obj of the grid, before and after the correction the lab applies):
     deflection resolutions (the read-out chain's force resolution / K) and the flat's
     flatness, in quadrature, which is what remains. With ``requirements.kobj_accuracy_rel`` stated,
     :func:`tip_height_tolerance_for_accuracy_mm` gives the tolerance the drawing must hold
-    for the uncorrected term to fit in what the other terms leave; the drawings print it
-    where machining holds it, else name the zeroing (:mod:`tactcad.in_use.tip_height_drawing`).
+    for the uncorrected term to fit in what the other terms leave, at each K_obj in the unit
+    that reads it (the array's best, as the accuracy's verification reads it); the drawings
+    print it where machining holds it, else name the zeroing
+    (:mod:`tactcad.in_use.tip_height_drawing`).
 (g) gauge model: each element's grid strain per newton at the budget's level against
     the next level that computes the strain anew (:func:`gauge_model_error_rel`); read
     with the predicted K_v it moves each deflection by that fraction. Calibration
@@ -612,21 +614,41 @@ def _others_after_sq(record: dict) -> np.ndarray:
 TOLERANCE_RTOL = 1e-3
 
 
+def reading_unit_index(units: list[dict]) -> np.ndarray:
+    """At each K_obj of the grid, the index (into ``units``) of the unit that reads it: the
+    one with the smallest RSS after correction (an unreadable one, None, never is). The
+    array's accuracy (:attr:`KobjBudget.array`) and the tip-height tolerance it leaves
+    (:func:`tip_height_tolerance_for_accuracy_mm`) both read each K_obj so.
+
+    Args:
+        units: the budget's unit records (:func:`unit_budget`), at least one.
+
+    Returns:
+        An integer array over the K_obj grid.
+    """
+    return np.argmin(np.array([finite_or_inf(u["rss_rel"]) for u in units]), axis=0)
+
+
 def _exact_tolerance(ctx: Context, pairs: list[Unit], units: list[dict], k_obj: np.ndarray,
                      accuracy_rel: float, linear_mm: float) -> float:
     """The tip-height tolerance (mm) at which the uncorrected coplanarity term, computed on
-    the coupled model (not linearised), fills the room the other terms leave: a root find
-    from the linear estimate ``linear_mm`` (the term grows faster than linearly at the top
-    of the K_obj range)."""
+    the coupled model (not linearised), fills the room the other terms leave at each K_obj
+    in the unit that reads it (:func:`reading_unit_index`): a root find from the linear
+    estimate ``linear_mm`` (the term grows faster than linearly at the top of the K_obj
+    range)."""
     from scipy.optimize import brentq
 
-    ops = [operating_point(ctx.k_of(u.measuring), ctx.k_of(u.reference), k_obj, ctx.force_N)
-           for u in pairs]
-    others = [_others_after_sq(rec) for rec in units]
+    reading = reading_unit_index(units)
+    # each unit only over the K_obj it reads: a unit the array does not read there does not
+    # bound the drawing
+    held = [(u, operating_point(ctx.k_of(u.measuring), ctx.k_of(u.reference),
+                                k_obj[reading == i], ctx.force_N),
+             _others_after_sq(rec)[reading == i])
+            for i, (u, rec) in enumerate(zip(pairs, units)) if np.any(reading == i)]
 
     def excess(tol_mm: float) -> float:
         return max(float(np.max(np.sqrt(_mismatch_rel(ctx, u, op, 2 * tol_mm) ** 2 + rest)))
-                   for u, op, rest in zip(pairs, ops, others)) / accuracy_rel - 1.0
+                   for u, op, rest in held) / accuracy_rel - 1.0
 
     hi = linear_mm
     while excess(hi) < 0:
@@ -649,20 +671,33 @@ def tip_height_tolerance_for_accuracy_mm(units: list[dict], accuracy_rel: float,
                                          mismatch_after_mm: Mapping[tuple[int, int], float]
                                          ) -> float | None:
     """The largest tip-height tolerance (+/- mm) whose uncorrected coplanarity term (a
-    mismatch of twice it) fits, at every K_obj of every unit, within what the other terms
-    after correction leave of ``accuracy_rel`` (in quadrature); the term is linear in a
-    small mismatch, its slope read from the zeroed residual (``mismatch_after_mm``:
-    (reference, measuring) -> mm). None where the other terms leave no room.
+    mismatch of twice it) fits, at every K_obj in the unit that reads it (the array's best,
+    :func:`reading_unit_index`, as the accuracy's verification reads it), within what the
+    other terms after correction leave of ``accuracy_rel`` (in quadrature); the term is
+    linear in a small mismatch, its slope read from the zeroed residual
+    (``mismatch_after_mm``: (reference, measuring) -> mm). A unit the array does not read a
+    K_obj with does not bound the tolerance there, so a looser accuracy never leaves a
+    tighter one.
 
     Args:
         units: the budget's unit records (:func:`unit_budget`).
         accuracy_rel: ``requirements.kobj_accuracy_rel``.
         mismatch_after_mm: the zeroed residual mismatch of each unit (mm).
+
+    Returns:
+        The tolerance (+/- mm), or None where the other terms leave no room at some K_obj
+        (the accuracy is then missed whatever the tips).
     """
+    if not units:
+        return None
+    reading = reading_unit_index(units)
     allowed = math.inf
-    for u in units:
-        own = finite_or_inf(u["sources"]["tip_coplanarity"]["after_rel"])
-        room_sq = accuracy_rel ** 2 - _others_after_sq(u)
+    for i, u in enumerate(units):
+        read = reading == i
+        if not np.any(read):
+            continue
+        own = finite_or_inf(u["sources"]["tip_coplanarity"]["after_rel"])[read]
+        room_sq = accuracy_rel ** 2 - _others_after_sq(u)[read]
         if np.any(room_sq <= 0) or not np.all(np.isfinite(own)):
             return None
         residual = mismatch_after_mm[(u["reference_element"], u["measuring_element"])]
@@ -1123,8 +1158,7 @@ class KobjBudget:
         if not self.units:
             return {"unit": [], "rss_rel": [], "worst_case_rel": [], "dominant": [],
                     "uncertainty_rel": []}
-        rss = np.array([finite_or_inf(u["rss_rel"]) for u in self.units])
-        best = np.argmin(rss, axis=0)  # an unreadable unit (None) is never the best
+        best = reading_unit_index(self.units)
         pick = lambda key: [self.units[b][key][i] for i, b in enumerate(best)]  # noqa: E731
         return {"unit": [f"{self.units[b]['reference_element']}/"
                          f"{self.units[b]['measuring_element']}" for b in best],

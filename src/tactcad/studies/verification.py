@@ -915,7 +915,10 @@ def tip_height_tolerance_record(plan: Plan, fig: Figures, budget) -> dict | None
     the drawn tolerance holds the allowance (margin allowance / drawn - 1), or when the
     drawing names the zeroing on a rigid flat and the mismatch that procedure leaves fits
     the twice-the-allowance mismatch the accuracy permits (margin 2 allowance / residual -
-    1); ``binding_words`` names which. It fails where the other terms leave no room.
+    1); ``binding_words`` names which. It fails where the other terms leave no room. The
+    allowance reads each K_obj in the unit :func:`kobj_accuracy_record` reads it with (the
+    array's best), so the two rows judge one budget: an accuracy that passes leaves room
+    for the tips, and a looser one a looser allowance.
     Error: the budget's largest own uncertainty (the allowance scales with the room).
 
     Args:
