@@ -72,3 +72,28 @@ def test_bench_atlas_prints_the_rate_the_scaling_and_the_agreement():
 def test_bad_bench_atlas_options_are_refused_naming_them(argv, needle):
     done = run_cli("bench", "atlas", *argv)
     assert done.returncode == 2 and needle in done.stderr and "Traceback" not in done.stderr
+
+
+def test_the_bench_batches_points_as_the_atlas_command_would(monkeypatch):
+    """Without --batch, each timed run cuts its points as `tactcad atlas` does for that many
+    workers: one or two points a task for a comb's handful, so the last tasks even out."""
+    import contextlib
+
+    from tactcad.benchmarks import atlas_bench
+    from tactcad.studies import design_atlas, sweeps
+
+    class Client:
+        def run(self, fn, *args):
+            return {"w1": 0.0}
+
+    asked = []
+    monkeypatch.setattr(sweeps, "dask_client",
+                        lambda address, workers: contextlib.nullcontext(Client()))
+    monkeypatch.setattr(design_atlas, "run_atlas",
+                        lambda atlas, points, client, batch: (asked.append(batch), ([], True))[1])
+    points = [{"point": i} for i in range(64)]
+    for workers in (1, 2):
+        atlas_bench.timed_atlas(None, points, workers, None, warm=points[:1])
+        atlas_bench.timed_atlas(None, points, workers, 8, warm=points[:1])
+    assert asked == [design_atlas.auto_batch(64, 1), 8, design_atlas.auto_batch(64, 2), 8]
+    assert asked[0] == 2 and asked[2] == 1

@@ -55,28 +55,29 @@ def worker_cpu_s() -> float:
     return time.process_time()
 
 
-def timed_atlas(atlas, points: Sequence[dict], workers: int, batch: int,
+def timed_atlas(atlas, points: Sequence[dict], workers: int, batch: int | None,
                 warm: Sequence[dict] = ()) -> tuple[float, list[dict], list[float]]:
     """One atlas on a new local cluster of ``workers`` single-threaded processes.
 
     Args:
         atlas: the jaw. points: the targets. workers: worker processes (1 ... 64).
-        batch: points per Dask task. warm: targets each worker judges first (default: the
-            first of ``points``).
+        batch: points per Dask task (None: as ``tactcad atlas`` chooses for ``workers``
+            single-threaded workers, :func:`tactcad.studies.design_atlas.auto_batch`).
+        warm: targets each worker judges first (default: the first of ``points``).
 
     Returns:
         (wall seconds from submitting the batches to gathering them, the records, the CPU
         seconds each worker spent meanwhile: on a busy machine a worker gets a fraction of
         a core, and the CPU time shows how the work split where the wall time cannot).
     """
-    from tactcad.studies.design_atlas import run_atlas
+    from tactcad.studies.design_atlas import auto_batch, run_atlas
     from tactcad.studies.sweeps import dask_client
 
     with dask_client(None, workers) as client:
         client.run(warm_worker, atlas, list(warm) or points[:1])
         cpu0 = client.run(worker_cpu_s)
         start = time.perf_counter()
-        records, _ = run_atlas(atlas, points, client, batch)
+        records, _ = run_atlas(atlas, points, client, batch or auto_batch(len(points), workers))
         wall = time.perf_counter() - start
         cpu1 = client.run(worker_cpu_s)
         return wall, records, [cpu1[w] - cpu0[w] for w in sorted(cpu0)]
@@ -143,14 +144,14 @@ def drawn_records(records: Sequence[dict], count: int, seed: int) -> list[dict]:
     return sorted(picked, key=lambda r: (r["point"], r["product"], r["material"]))
 
 
-def atlas_bench_figures(atlas, points: int, agree: int, batch: int, seed: int = 0,
+def atlas_bench_figures(atlas, points: int, agree: int, batch: int | None, seed: int = 0,
                         say: Callable[[str], None] = lambda s: None) -> dict:
     """The benchmark's figures.
 
     Args:
         atlas: the jaw and its products (:class:`tactcad.studies.design_atlas.JawAtlas`,
             as ``tactcad atlas`` makes it). points: target points of the sample (>= 2).
-            agree: records checked against ``tactcad design``. batch: points per task.
+            agree: records checked against ``tactcad design``. batch: points per task (None: the atlas's own choice).
             seed: the sample's and the draw's seed. say: progress lines.
 
     Returns:

@@ -19,14 +19,9 @@ from tactcad.errors import DesignError
 from tactcad.studies.atlas_files import (  # noqa: F401  (the command's names)
     FIGURE_NAME, PROJECT_ATLAS_FOLDER, SUMMARY_NAME, TABLE_NAME, point_title, read_table,
     span, write_table)
+from tactcad.studies.design_atlas import (  # noqa: F401  (the command's batch rule)
+    MAX_AUTO_BATCH, TASKS_PER_WORKER, auto_batch)
 
-#: Tasks each worker thread is handed on average when ``--batch`` is not given: enough that
-#: the last ones even out the workers' finish (a comb's point costs seconds).
-TASKS_PER_WORKER = 32
-#: Most points a task takes when ``--batch`` is not given: each task carries the jaw and
-#: its records over the wire, so a die's points (milliseconds each) go in batches, but one
-#: Ctrl-C loses at most this many points' work a worker.
-MAX_AUTO_BATCH = 32
 #: Range options: option -> (the axis of :data:`tactcad.studies.design_atlas.AXES`, unit, type).
 RANGE_OPTIONS = {"--kr-over-km-range": ("kr_over_km", ""),
                  "--kobj-centre": ("kobj_centre_N_per_mm", "N/mm"),
@@ -360,23 +355,6 @@ def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[di
         size = args.batch or auto_batch(len(points), sum(client.nthreads().values()))
         return run_atlas(atlas, points, client, size,
                          progress=lambda done, total: say(f"atlas: {done}/{total} batches"))
-
-
-def auto_batch(points: int, threads: int) -> int:
-    """Points per Dask task when ``--batch`` is not given: about :data:`TASKS_PER_WORKER`
-    tasks for each worker thread, 1 to :data:`MAX_AUTO_BATCH` points each. (On two workers,
-    10 000 die points took 131 s judged two to a task and 102 s 32 to a task: a task's
-    overhead is several of a die's points.)
-
-    Args:
-        points: target points of the run. threads: the cluster's worker threads (0 is
-            taken as 1).
-
-    Returns:
-        Points per task, an integer >= 1.
-    """
-    share = points // (max(1, threads) * TASKS_PER_WORKER)
-    return max(1, min(MAX_AUTO_BATCH, share))
 
 
 def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: bool,

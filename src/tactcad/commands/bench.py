@@ -106,8 +106,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     at.add_argument("--agree", type=count(0, 1000, "records checked"), default=4, metavar="N",
                     help="records drawn and run through `tactcad design` (default "
                          "%(default)s; each costs seconds, a comb's refusal minutes)")
-    at.add_argument("--batch", type=count(1, 10_000, "points per task"), default=8,
-                    metavar="N", help="target points per Dask task (default %(default)s)")
+    at.add_argument("--batch", type=count(1, 10_000, "points per task"), default=None,
+                    metavar="N", help="target points per Dask task (default: as `tactcad "
+                                      "atlas` chooses for the cluster's workers)")
     at.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
                     help="seed of the sample and of the draw (default %(default)s)")
     add_output_args(at, "print one JSON object: seconds, points/s, scaling, agreement, goals")
