@@ -539,12 +539,35 @@ def constructions_refusal(refused: list[tuple[str, str, DesignError]], args: arg
                     pasted.append({**a, "option": option,
                                    "words": f"the {shown}: {words}" if words else f"the {shown}"})
     _, shown, head = order[0]
-    lines = [one_refusal_line(s, e) for _, s, e in order] + list(after)
-    which = shown if len(order) == 1 else (f"{shown}, the nearest of the {len(order)} "
-                                           "constructions that refuse; each one's to paste below")
-    return DesignError(head.field, head.value, f"{head.allowed or 'a design'} ({which})",
-                       "; ".join(lines), alternatives=[*pasted, *more],
-                       limit=getattr(head, "limit", ""))
+    lines = [refusal_under(s, e, head) for _, s, e in order] + list(after)
+    allowed = head.allowed or "a design"
+    if len(order) > 1:  # one construction: its name heads its reasons, said once
+        allowed += (f" ({shown}, the nearest of the {len(order)} constructions that refuse; "
+                    "each one's to paste below)")
+    return DesignError(head.field, head.value, allowed, "; ".join(lines),
+                       alternatives=[*pasted, *more], limit=getattr(head, "limit", ""))
+
+
+def refusal_under(construction: str, exc: DesignError, head: DesignError) -> str:
+    """A construction's refusal under the headline ``head`` of :func:`constructions_refusal`,
+    saying nothing the headline says: the headline's own refusal by its reasons, one of the
+    same option and value by its allowed range and reasons, any other by its whole line
+    (:func:`one_refusal_line`).
+
+    Args:
+        construction: the construction's name as the line reads it.
+        exc: its refusal.
+        head: the refusal the headline states.
+
+    Returns:
+        ``construction: ...`` on one line.
+    """
+    if len(getattr(exc, "errors", (exc,))) > 1 or (exc.field, exc.value) != (head.field,
+                                                                             head.value):
+        return one_refusal_line(construction, exc)
+    if exc is head:
+        return f"{construction}: {exc.why or 'refused'}"
+    return f"{construction}: allowed {exc.allowed}" + (f" ({exc.why})" if exc.why else "")
 
 
 def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder: Path | None,
