@@ -329,6 +329,10 @@ def project_store(args: argparse.Namespace) -> Path:
 def run(args: argparse.Namespace) -> int:
     """``design``: the searched design written, or a refusal that leaves no folder it made
     (a new ``--out DIR`` that only got the store of the solves made for it)."""
+    from tactcad.atomic import refuse_too_long_name
+
+    refuse_too_long_name("--out", args.out,  # before the file system is asked of it
+                         "a file" if args.out.endswith(".toml") else "a folder")
     out = Path(args.out)
     made = not out.exists() and not args.out.endswith(".toml")
     try:
