@@ -188,9 +188,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"{STACKED_COLUMNS_RANGE[1]} for a stacked array, {COLUMNS_RANGE[0]} ... "
                         f"{COLUMNS_RANGE[1]} for a comb, {DIE_COLUMNS[0]} ... {DIE_COLUMNS[1]} "
                         "for a silicon die; default: the base design's")
-    p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
-                   help="rows of the new grid (the model holds two clamped rows facing each "
-                        "other: 2)")
+    p.add_argument("--rows", type=count(1, 100, "rows"), metavar="2", default=None,
+                   help="rows of the new grid: 2, the only value taken (the model holds two "
+                        "clamped rows facing each other; any other is refused); default 2")
     p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
                    help="array pitch, fixed (default: searched, starting from the base "
                         "design's)")
@@ -351,6 +351,8 @@ def _run(args: argparse.Namespace) -> int:
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
 
+    if args.rows not in (None, 2):  # said as the option, not as the file's range "2 ... 2"
+        raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force,
                       tissue=tissue_of(args) if args.tissue_coupling == "on" else None)
     if args.jaw is not None or args.construction not in ("auto", "stacked"):
@@ -898,8 +900,6 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     from tactcad.project_folder import (check_project_target, scenes_without_rigs_text,
                                         write_project)
 
-    if args.rows not in (None, 2):
-        raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
     refuse_options_a_jaw_sets(args)
     chosen, left = jaw_constructions(args)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
