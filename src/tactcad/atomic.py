@@ -126,6 +126,63 @@ def in_system_folder(folder: str | Path) -> bool:
         or any(real.is_relative_to(t) for t in SYSTEM_TREES)
 
 
+#: The longest name of a file or folder (bytes) where the file system does not say: the
+#: limit of ext4, XFS, Btrfs, APFS and NTFS alike.
+NAME_MAX_BYTES = 255
+
+
+def name_limit_bytes(path: Path) -> int:
+    """The longest name (bytes) the file system holding ``path`` takes: asked of its nearest
+    folder that exists, else :data:`NAME_MAX_BYTES`."""
+    for folder in (path, *path.parents):
+        try:
+            if folder.is_dir():
+                return int(os.pathconf(folder, "PC_NAME_MAX"))
+        except (OSError, ValueError, AttributeError):  # a name too long itself, no pathconf
+            continue
+    return NAME_MAX_BYTES
+
+
+def too_long_name(given: str | Path) -> tuple[str, int, int] | None:
+    """The first name along a path longer than its file system takes.
+
+    Args:
+        given: the path as given (``~`` expanded, made absolute).
+
+    Returns:
+        (the name, its length, the limit), both in bytes, or None where every name fits.
+    """
+    path = Path(os.path.abspath(os.path.expanduser(str(given))))
+    limit = name_limit_bytes(path)
+    for name in path.parts[1:]:
+        size = len(os.fsencode(name))
+        if size > limit:
+            return name, size, limit
+    return None
+
+
+def refuse_too_long_name(option: str, given: object, what: str = "a folder") -> None:
+    """Refuse an output path with a name the file system cannot hold, before anything is
+    made (the system's own refusal would name the whole path as its field).
+
+    Args:
+        option: the option named in the refusal, e.g. ``--out``.
+        given: the value as the user gave it.
+        what: what the option names (``a folder``, ``a file``).
+
+    Raises:
+        DesignError: naming ``option``, the value and the file system's limit.
+    """
+    from tactcad.errors import DesignError
+
+    long = too_long_name(str(given))
+    if long is not None:
+        _, size, limit = long
+        raise DesignError(option, str(given), f"{what} whose every name is at most {limit} "
+                          "bytes (the file system's limit)",
+                          f"one of its names is {size} bytes")
+
+
 def refuse_system_folder(option: str, given: object, folder: str | Path,
                          what: str = "a folder") -> None:
     """Refuse an output in a system folder: the one rule of every ``--out``.
@@ -141,6 +198,7 @@ def refuse_system_folder(option: str, given: object, folder: str | Path,
     """
     from tactcad.errors import DesignError
 
+    refuse_too_long_name(option, given, what)
     if in_system_folder(folder):
         raise DesignError(option, str(given), f"{what} {SYSTEM_RULE}")
 

@@ -202,6 +202,30 @@ def test_an_out_folder_under_a_file_is_json_with_exit_2(capsys, tmp_path):
     assert "--out" in err["message"] and not (blocker / "sub").exists()
 
 
+@pytest.mark.parametrize("argv, what", [
+    (["export", "--only", "bom", "--no-cache"], "a folder"),
+    (["design", "--kr-over-km", "5", "--kobj-range", "0.2", "1.5", "--full-scale-force",
+      "0.05", "--jaw", "10"], "a folder")])
+def test_an_out_name_too_long_for_the_file_system_is_a_bad_out(capsys, tmp_path, argv, what):
+    """A 300-byte name was the file system's error: the whole path as the field, no allowed
+    range, exit 3; it is a bad --out with the file system's limit (exit 2)."""
+    long = str(tmp_path / ("x" * 300))
+    code = cli.main([*argv, "--json", "--out", long])
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and err["exit_code"] == 2 and err["field"] == "--out"
+    assert err["allowed"].startswith(f"{what} whose every name is at most ")
+    assert "bytes (the file system's limit)" in err["allowed"]
+
+
+@pytest.mark.parametrize("command", ["stiffness", "modal"])
+def test_an_element_the_design_has_not_is_refused_as_the_option(capsys, command):
+    """`--element 99` was refused as `number = 99` (the API's argument), not the option."""
+    code = cli.main([command, "--element", "99", "--json"])
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and err["field"] == "--element" and err["value"] == 99
+    assert err["message"].startswith("--element = 99: allowed an integer 1 ... ")
+
+
 @pytest.mark.parametrize("argv", [["scenes"], ["scenes", "array"], ["strength"],
                                   ["stiffness", "--element", "3"], ["table1"],
                                   ["tolerance", "--samples", "200"],

@@ -633,3 +633,36 @@ def test_a_jaw_reports_each_kind_of_element_with_its_own_arm_web_and_stop_gap():
                   "stop_gaps_mm": [0.02, 0.02, 0.033, 0.033]}}
     assert distinct_elements_lengths(d) == {"arms_mm": [2.0, 4.0], "webs_mm": [0.116, 0.084],
                                             "stop_gaps_mm": [0.02, 0.033]}
+
+
+def test_a_refusal_in_a_5_mm_jaw_says_each_thing_once(tmp_path):
+    """Only the silicon die fits a 5 mm jaw and refuses a 0.05 N rating: the refusal named
+    the option, the value and the allowed rating twice and the die's failure probability
+    once per loading; now each once, the comb's misfit after the die's reasons."""
+    r = run_cli("design", "--jaw", "5", "--kr-over-km", "5", "--kobj-range", "0.2", "1.5",
+                "--full-scale-force", "0.05", "--columns", "6", "--out", "die", cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    line = r.stderr.splitlines()[0]
+    assert line.startswith("tactcad: error: --full-scale-force = 0.05: allowed at most ")
+    for words in ("--full-scale-force = 0.05", "allowed at most", "silicon die",
+                  "failure probability", "Weibull pair"):
+        assert line.count(words) == 1, (words, line)
+    assert "every beam at its rated force and every beam on its deepest stop" in line
+    assert line.index("silicon die: past") < line.index("monolithic-comb: does not fit")
+
+
+def test_several_constructions_refusing_one_option_name_it_and_its_value_once():
+    import argparse
+
+    from tactcad.commands.design import constructions_refusal
+    from tactcad.errors import DesignError
+
+    args = argparse.Namespace(full_scale_force=1.0, kobj_range=[0.5, 5.0], columns=None)
+    low = DesignError("--full-scale-force", 1.0, "at most 0.03 N", "the die's roots",
+                      alternatives=[{"option": "--full-scale-force 0.03", "words": "lighter"}])
+    high = DesignError("--full-scale-force", 1.0, "at most 0.14 N", "the comb's stops",
+                       alternatives=[{"option": "--full-scale-force 0.14", "words": "largest"}])
+    text = str(constructions_refusal([("mems-die", "silicon die", low),
+                                      ("monolithic-comb", "comb", high)], args))
+    assert text.count("--full-scale-force = 1.0") == 1 and text.count("0.14 N") == 1
+    assert "comb: the comb's stops" in text and "silicon die: allowed at most 0.03 N" in text

@@ -195,3 +195,28 @@ def test_the_options_earlier_name_is_refused_with_its_new_one():
                        capture_output=True, text=True)
     assert r.returncode == 2 and "--pin-to-tip-mm 30" in r.stderr, r.stderr
     assert "unrecognized" not in r.stderr and "Traceback" not in r.stderr
+
+
+def test_a_grasp_past_the_overload_limit_is_warned_its_readings_marked_and_it_fails():
+    """At 5 N the stacked example's elements 2, 3, 5, 6 pass their overload limit: the grasp
+    said so in a warning naming the force and the sites, gave no K_obj from their units (in
+    the JSON nor the table) and exited 1, as a failed check; at the default force, nothing."""
+    r = run_cli("grasp", "--design", TI, "--force-N", "5", "--json")
+    assert r.returncode == 1, r.stderr
+    d = json.loads(r.stdout)
+    laid = d["as_laid_out"]
+    over = [t["site"] for t in laid["tips"] if t["over_overload_limit"]]
+    assert over and d["passed"] is False
+    warning = next(w for w in d["warnings"] if w.startswith("warning: as laid out"))
+    assert "5 N" in warning and f"sites {', '.join(map(str, over))}" in warning
+    hit = [u for u in laid["units"] if {u["reference"], u["measuring"]} & set(over)]
+    assert hit and all(u["overloaded"] and not u["valid"] and not u["reads"] for u in hit)
+    assert all(u["K_obj_read_N_per_mm"] is None and u["K_obj_corrected_N_per_mm"] is None
+               for u in hit)
+    assert "overload limit" in hit[0]["why"]
+    text = run_cli("grasp", "--design", TI, "--force-N", "5")
+    assert text.returncode == 1
+    rows = [line for line in text.stdout.splitlines() if line.startswith(f"| {hit[0]['unit']} |")]
+    assert rows and rows[0].count("| overloaded |") >= 1 and "overload limit" in rows[0]
+    safe = run_cli("grasp", "--design", TI, "--json")
+    assert safe.returncode == 0 and json.loads(safe.stdout)["warnings"] == []

@@ -4,7 +4,8 @@ import pytest
 
 from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError
-from tactcad.in_use.grasp_experiment import grasp, solve_tips, tissue_compliance
+from tactcad.in_use.grasp_experiment import (grasp, overload_warning, solve_tips,
+                                             tissue_compliance)
 from tactcad.in_use.jaw_kinematics import JawGeometry
 from tactcad.mechanics.contact import Punch
 from tactcad.mechanics.evaluation import ladder_stiffness_by_element
@@ -115,6 +116,16 @@ def test_each_tip_is_judged_on_its_own_overload_limit_apart_from_its_rating():
             assert t["overload_limit_N"] == limits[t["site"]]
             assert t["over_overload_limit"] == (t["element_force_N"] > limits[t["site"]])
         assert any(t["over_overload_limit"] for t in lay.tips)
+        # a unit on an overloaded element reads nothing; the others keep their readings
+        over = {t["site"] for t in lay.tips if t["over_overload_limit"]}
+        for u in lay.units:
+            hit = bool({u["reference"], u["measuring"]} & over)
+            assert u["overloaded"] == hit and (u["K_obj_read_N_per_mm"] is None) == hit
+            assert not (hit and u["valid"])
+        warning = overload_warning(lay)
+        assert warning and f"{lay.total_force_N:.4g} N" in warning
+        assert all(str(n) in warning for n in over)
+    assert overload_warning(loose.as_laid_out) is None
 
 
 def test_under_a_wedge_each_unit_is_judged_on_its_own_thickness_with_one_modulus():

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import re
 import warnings
 
 import numpy as np
@@ -412,6 +413,18 @@ def test_fit_residuals_and_statistics_match_the_model():
     assert fr["web_mm"] == pytest.approx([0.05, 1.0]) and fr["arm_mm"][1] == pytest.approx(20.0)
     assert fr["sheet_mm"] == pytest.approx([0.5, 10.0])
     assert fr["poisson_ratio"][0] <= 0.27 and fr["poisson_ratio"][1] >= 0.34
+
+
+def test_the_range_warning_says_the_coordinate_in_words_and_names_no_module():
+    """The warning carried the fit's data record, module path and all
+    (``44 designs of tactcad.mechanics.correction_sweep``): it says each coordinate in
+    words and what to run instead."""
+    thick = dataclasses.replace(G0, sheet_thickness_mm=40.0)
+    with pytest.warns(CorrectionRangeWarning) as said:
+        estimate_closed_form(thick, MAT)
+    text = str(said[0].message)
+    assert "sheet_mm (sheet thickness, mm)" in text and "--model fem3d" in text
+    assert re.search(r"tactcad\.[a-z_]+\.", text) is None, text
 
 
 def test_closed_form_warns_outside_the_fitted_range_with_an_error_estimate():

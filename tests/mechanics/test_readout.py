@@ -439,3 +439,32 @@ def test_the_default_grid_wider_than_the_sheet_is_refused_as_a_stated_one(drop_r
         plan_from_dict(stated)
     except DesignError as other:
         assert "readout.grid_width_mm" not in {e.field for e in getattr(other, "errors", (other,))}
+
+
+@pytest.mark.parametrize("gauge, cites_own", [("constantan-foil", False),
+                                              ("constantan-foil-hbm-y", True)])
+def test_the_gauge_factor_tc_cites_what_the_library_gauge_is(gauge, cites_own):
+    """The default gauge is a Micro-Measurements WA class gauge, yet the gauge factor's
+    temperature coefficient was cited from the HBM Y series data sheet as its own: for it the
+    figure is a typical constantan value and its own data sheet governs; for the HBM Y
+    series gauge it is that data sheet's."""
+    from tactcad.design.readout_section import readout_of
+    from tactcad.vocabulary.material_library import strain_gauge
+
+    lib = strain_gauge(gauge)
+    source = dict(readout_of({}, lib).sources)["gauge_factor_tc_pct_per_100K"]
+    assert "HBM Y series data sheet" in source
+    assert source.startswith(f"library gauge {gauge}: HBM Y series") == cites_own
+    assert ("typical of constantan" in source and "its own data sheet governs" in source
+            and "Micro-Measurements WA" in source) != cites_own
+
+
+def test_design_rows_help_says_two_and_a_wrong_count_is_refused_as_the_option(capsys):
+    with pytest.raises(SystemExit):
+        main(["design", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "--rows 2 rows of the new grid: 2, the only value taken" in help_text
+    code = main(["design", "--rows", "3", "--kr-over-km", "5", "--kobj-range", "0.2", "1.5",
+                 "--full-scale-force", "0.05", "--out", "never_written.toml", "--json"])
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and err["field"] == "--rows" and err["allowed"] == "2"

@@ -188,9 +188,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"{STACKED_COLUMNS_RANGE[1]} for a stacked array, {COLUMNS_RANGE[0]} ... "
                         f"{COLUMNS_RANGE[1]} for a comb, {DIE_COLUMNS[0]} ... {DIE_COLUMNS[1]} "
                         "for a silicon die; default: the base design's")
-    p.add_argument("--rows", type=count(1, 100, "rows"), metavar="N", default=None,
-                   help="rows of the new grid (the model holds two clamped rows facing each "
-                        "other: 2)")
+    p.add_argument("--rows", type=count(1, 100, "rows"), metavar="2", default=None,
+                   help="rows of the new grid: 2, the only value taken (the model holds two "
+                        "clamped rows facing each other; any other is refused); default 2")
     p.add_argument("--pitch", type=number(0, 1000, "mm", lo_open=True), metavar="MM", default=None,
                    help="array pitch, fixed (default: searched, starting from the base "
                         "design's)")
@@ -329,6 +329,10 @@ def project_store(args: argparse.Namespace) -> Path:
 def run(args: argparse.Namespace) -> int:
     """``design``: the searched design written, or a refusal that leaves no folder it made
     (a new ``--out DIR`` that only got the store of the solves made for it)."""
+    from tactcad.atomic import refuse_too_long_name
+
+    refuse_too_long_name("--out", args.out,  # before the file system is asked of it
+                         "a file" if args.out.endswith(".toml") else "a folder")
     out = Path(args.out)
     made = not out.exists() and not args.out.endswith(".toml")
     try:
@@ -347,6 +351,8 @@ def _run(args: argparse.Namespace) -> int:
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
 
+    if args.rows not in (None, 2):  # said as the option, not as the file's range "2 ... 2"
+        raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
     targets = Targets(args.kr_over_km, tuple(args.kobj_range), args.full_scale_force,
                       tissue=tissue_of(args) if args.tissue_coupling == "on" else None)
     if args.jaw is not None or args.construction not in ("auto", "stacked"):
@@ -545,12 +551,35 @@ def constructions_refusal(refused: list[tuple[str, str, DesignError]], args: arg
                     pasted.append({**a, "option": option,
                                    "words": f"the {shown}: {words}" if words else f"the {shown}"})
     _, shown, head = order[0]
-    lines = [one_refusal_line(s, e) for _, s, e in order] + list(after)
-    which = shown if len(order) == 1 else (f"{shown}, the nearest of the {len(order)} "
-                                           "constructions that refuse; each one's to paste below")
-    return DesignError(head.field, head.value, f"{head.allowed or 'a design'} ({which})",
-                       "; ".join(lines), alternatives=[*pasted, *more],
-                       limit=getattr(head, "limit", ""))
+    lines = [refusal_under(s, e, head) for _, s, e in order] + list(after)
+    allowed = head.allowed or "a design"
+    if len(order) > 1:  # one construction: its name heads its reasons, said once
+        allowed += (f" ({shown}, the nearest of the {len(order)} constructions that refuse; "
+                    "each one's to paste below)")
+    return DesignError(head.field, head.value, allowed, "; ".join(lines),
+                       alternatives=[*pasted, *more], limit=getattr(head, "limit", ""))
+
+
+def refusal_under(construction: str, exc: DesignError, head: DesignError) -> str:
+    """A construction's refusal under the headline ``head`` of :func:`constructions_refusal`,
+    saying nothing the headline says: the headline's own refusal by its reasons, one of the
+    same option and value by its allowed range and reasons, any other by its whole line
+    (:func:`one_refusal_line`).
+
+    Args:
+        construction: the construction's name as the line reads it.
+        exc: its refusal.
+        head: the refusal the headline states.
+
+    Returns:
+        ``construction: ...`` on one line.
+    """
+    if len(getattr(exc, "errors", (exc,))) > 1 or (exc.field, exc.value) != (head.field,
+                                                                             head.value):
+        return one_refusal_line(construction, exc)
+    if exc is head:
+        return f"{construction}: {exc.why or 'refused'}"
+    return f"{construction}: allowed {exc.allowed}" + (f" ({exc.why})" if exc.why else "")
 
 
 def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder: Path | None,
@@ -915,8 +944,6 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     from tactcad.project_folder import (check_project_target, scenes_without_rigs_text,
                                         write_project)
 
-    if args.rows not in (None, 2):
-        raise DesignError("--rows", args.rows, "2", "the model holds two rows facing each other")
     refuse_options_a_jaw_sets(args)
     chosen, left = jaw_constructions(args)
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)

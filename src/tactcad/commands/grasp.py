@@ -142,6 +142,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.design.grasper_in_use import stated_grasper
     from tactcad.errors import DesignError
     from tactcad.in_use.grasp_experiment import (default_jaw, grasp, kobj_range_warning,
+                                                 overload_warning, overloaded_sites,
                                                  result_with_kobj_range, tissue_base_of)
     from tactcad.in_use.shaft_leads import leads_check
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
@@ -203,9 +204,13 @@ def run(args: argparse.Namespace) -> int:
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
     result = result_with_kobj_range(result, (lo, hi))
-    warning = kobj_range_warning(k_obj, (lo, hi))
+    warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)),
+                            *map(overload_warning, shown_layouts(result))) if w]
+    # an element past its overload limit in the design's own layout: the grasp the
+    # hardware makes damages it, a result that does not pass (exit 1, as a failed check)
+    passed = not overloaded_sites(result.as_laid_out.tips)
     record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
-              "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
+              "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings, "passed": passed,
               "reasons": {
                   "rated_force_N": req.reasons["full_scale_force_N"],
                   "overload_limit_N": "each element's yield with the design's safety factor "
@@ -234,7 +239,15 @@ def run(args: argparse.Namespace) -> int:
                                   f"{DEFAULT_TISSUE_BASE}, assumed: tissue gripped on the jaw's "
                                   "face does not slip on it")}}
     print(dumps(record, indent=1) if args.json else render(record))
-    return 0
+    return 0 if passed else 1
+
+
+def shown_layouts(result) -> list:
+    """The layouts a grasp reports on their own: the design's, the paired one unless it is
+    the design's, and the one along the rows where there is one."""
+    own = result.layout["as_laid_out"]
+    return [result.as_laid_out, *([] if own else [result.paired]),
+            *([result.along_rows] if result.along_rows is not None else [])]
 
 
 def overload_limits_of(plan) -> dict[int, float]:
@@ -277,6 +290,10 @@ def _pct(x) -> str:
     return "-" if x is None or not math.isfinite(x) else f"{100 * x:+.3g} %"
 
 
+#: What a unit's R and K_obj cells say where an element of it is past its overload limit.
+OVERLOADED_CELL = "overloaded"
+
+
 def unit_table(layout: dict) -> list[str]:
     """One layout's units as a Markdown table."""
     lines = ["| unit | r_r mm | r_m mm | r_m/r_r | tissue mm | Δ_r mm | Δ_m mm | K_obj true | "
@@ -286,14 +303,17 @@ def unit_table(layout: dict) -> list[str]:
         t_r, t_m = u.get("tissue_thickness_reference_mm"), u.get("tissue_thickness_measuring_mm")
         tissue = "-" if t_r is None else (_f(t_r, 3) if t_r == t_m
                                           else f"{_f(t_r, 3)} / {_f(t_m, 3)}")
+        if u.get("overloaded"):  # an overloaded element reads nothing: said in each cell
+            read = " | ".join([OVERLOADED_CELL] * 5)
+        else:
+            read = (f"{_f(u['R_read'])} | {_f(u['K_obj_read_N_per_mm'])} | "
+                    f"{_pct(u['error_rel'])} | {_f(u['K_obj_corrected_N_per_mm'])} | "
+                    f"{_pct(u['error_corrected_rel'])}")
         lines.append(
             f"| {u['unit']} | {_f(u['r_reference_mm'])} | {_f(u['r_measuring_mm'])} | "
             f"{_f(u['radius_ratio'])} | {tissue} | {_f(u['travel_reference_mm'])} | "
             f"{_f(u['travel_measuring_mm'])} | {_f(u['K_obj_true_N_per_mm'])} | "
-            f"{_f(u['R_true'])} | {_f(u['R_read'])} | "
-            f"{_f(u['K_obj_read_N_per_mm'])} | {_pct(u['error_rel'])} | "
-            f"{_f(u['K_obj_corrected_N_per_mm'])} | {_pct(u['error_corrected_rel'])} | "
-            f"{unit_note(u)} |")
+            f"{_f(u['R_true'])} | {read} | {unit_note(u)} |")
     return lines
 
 

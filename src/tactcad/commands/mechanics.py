@@ -8,7 +8,7 @@ import json
 from tactcad.mechanics.ladder import is_meshed, levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args, load_from_args, product_view)
-from tactcad.commands.options import count, keep_option_defaults, number
+from tactcad.commands.options import check_element_option, count, keep_option_defaults, number
 from tactcad.errors import DesignError, TactcadError
 
 
@@ -57,6 +57,7 @@ def run_stiffness(args: argparse.Namespace) -> int:
                           "rows x columns)", "required for an array's design, whose stiffness "
                           "is one element's (a die's file gives each row's beam)")
     project = load_from_args(args)
+    check_element_option(args.element, project.plan)
     plan, element = project.plan, project.element(args.element)
     slot = element.slot
     if args.vtk is not None and not is_meshed(args.model):

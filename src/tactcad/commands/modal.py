@@ -8,7 +8,7 @@ from pathlib import Path
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
-from tactcad.commands.options import count, keep_option_defaults
+from tactcad.commands.options import check_element_option, count, keep_option_defaults
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
 
@@ -71,6 +71,7 @@ def run_modal(args: argparse.Namespace) -> int:
     plan = plan_from_args(args)
     report = progress_from_args(args)
     if args.element is not None:
+        check_element_option(args.element, plan)
         slot = plan.element(args.element)
         chosen = {slot.geometry.part_name: (slot.geometry, [slot.number])}
     else:

@@ -292,3 +292,21 @@ def options_given(args: argparse.Namespace, besides: Sequence[str]) -> list[tupl
             for dest, default in defaults.items()
             if dest not in besides and dest != "option_defaults"
             and getattr(args, dest, default) != default]
+
+
+def check_element_option(number: int, plan) -> None:
+    """Refuse an ``--element`` that is none of the design's element numbers, by the option's
+    name (the design's own lookup names its argument, not the option).
+
+    Args:
+        number: ``--element`` as given.
+        plan: the design's plan (its ``slots``, numbered 1 ... rows x columns).
+
+    Raises:
+        DesignError: ``--element``, its value and the design's element numbers.
+    """
+    numbers = sorted(s.number for s in plan.slots)
+    if number not in numbers:
+        raise DesignError("--element", number,
+                          f"an integer {numbers[0]} ... {numbers[-1]} (the design's element "
+                          "numbers)")

@@ -254,7 +254,8 @@ DEFAULTS: dict[str, tuple[Any, str]] = {
                                   "material's CTE (the gauge one orders for that material)"),
     "gauge_factor_tc_pct_per_100K": (1.15, "HBM Y series (constantan) data sheet: temperature "
                                            "coefficient of the gauge factor about "
-                                           "115 x 1e-6 /K"),
+                                           "115 x 1e-6 /K (a gauge of that series; another "
+                                           "gauge's own data sheet governs)"),
     "gauge_transverse_sensitivity": (0.0, "assumption: K_t = 0 (the lot's package states it; "
                                           "foil gauges under 1 %)"),
     "substrate_cte_ppm_per_K": (None, "the material grade's CTE (materials library)"),
@@ -551,6 +552,30 @@ def chosen_daq_range(ranges_V, signal_V: float, margin: float) -> tuple[float, b
     return (holding[0], True) if holding else (max(ranges_V), False)
 
 
+#: The gauge series whose data sheet gives the default gauge-factor temperature coefficient.
+GF_TC_SERIES = "HBM Y series"
+
+
+def gauge_factor_tc_source(gauge) -> str:
+    """Where the default temperature coefficient of the gauge factor comes from, for the
+    design's library gauge: the data sheet of :data:`GF_TC_SERIES` where the gauge is of that
+    series; for any other, a typical constantan value from that data sheet, the gauge's own
+    data sheet governing (the catalogue entry names the gauge it is).
+
+    Args:
+        gauge: the library :class:`~tactcad.vocabulary.material_library.StrainGauge`.
+
+    Returns:
+        The source in words.
+    """
+    value = "temperature coefficient of the gauge factor about 115 x 1e-6 /K"
+    if gauge.description.startswith(GF_TC_SERIES):
+        return f"library gauge {gauge.name}: {GF_TC_SERIES} data sheet: {value}"
+    return (f"typical of constantan foil ({GF_TC_SERIES} data sheet: {value}), not a figure "
+            f"of library gauge {gauge.name} ({gauge.description}): its own data sheet governs; "
+            "state readout.gauge_factor_tc_pct_per_100K from it")
+
+
 def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
     """The read-out chain of a design's raw tables (validated before).
 
@@ -570,7 +595,9 @@ def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
                                                 gs.get("backing_modulus_MPa", ""))}
     values, sources = section_with_defaults(raw, "readout", {
         **{k: (v, f"library gauge {gauge.name}: {why}".rstrip(": "))
-           for k, (v, why) in from_gauge.items()}, **DEFAULTS})
+           for k, (v, why) in from_gauge.items()}, **DEFAULTS,
+        "gauge_factor_tc_pct_per_100K": (DEFAULTS["gauge_factor_tc_pct_per_100K"][0],
+                                         gauge_factor_tc_source(gauge))})
     if values["excitation_V"] is None:
         values["excitation_V"] = tn502_excitation_V(
             float(values["gauge_resistance_ohm"]),

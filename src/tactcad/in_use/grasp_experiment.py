@@ -668,11 +668,75 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
                                     float(force_N), profile)
     check_angle_deg(jaw, angle_deg)
     sol = press(tips, c, jaw.slab_thickness_mm, angle_deg, profile)
-    return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()),
-                       tip_records(tips, sol, rated_force_N, thickness),
-                       [unit_reading(u[0], u[1], sol, tips, k_local, u[2] if len(u) > 2 else u[:2],
-                                     thickness, softening)
-                        for u in units], coupling)
+    records = tip_records(tips, sol, rated_force_N, thickness)
+    return LayoutGrasp(name, float(angle_deg), float(sol.tip_force_N.sum()), records,
+                       with_overload([unit_reading(u[0], u[1], sol, tips, k_local,
+                                                   u[2] if len(u) > 2 else u[:2],
+                                                   thickness, softening)
+                                      for u in units], records), coupling)
+
+
+#: A unit's figures an overloaded element leaves without meaning (the element yields or its
+#: gauge passes its largest strain): never shown as a reading.
+OVERLOADED_READING_KEYS = ("R_read", "K_obj_read_N_per_mm", "error_rel", "R_corrected",
+                           "K_obj_corrected_N_per_mm", "error_corrected_rel")
+
+
+def overloaded_sites(tips: list[dict]) -> list[int]:
+    """The sites whose element carries more than its overload limit (:func:`tip_records`'
+    ``over_overload_limit``)."""
+    return [t["site"] for t in tips if t.get("over_overload_limit")]
+
+
+def with_overload(units: list[dict], tips: list[dict]) -> list[dict]:
+    """``units`` with ``overloaded``: True for a unit with an element past its overload
+    limit, which then does not read (``valid`` False, ``why`` naming the site) and whose R
+    and K_obj read and corrected are None (:data:`OVERLOADED_READING_KEYS`).
+
+    Args:
+        units: one layout's unit records (:func:`unit_reading`).
+        tips: the same layout's tip records (:func:`tip_records`).
+
+    Returns:
+        New unit records; the others unchanged but for ``overloaded`` False.
+    """
+    over = set(overloaded_sites(tips))
+    out = []
+    for u in units:
+        sites = [n for n in (u["reference"], u["measuring"]) if n in over]
+        if not sites:
+            out.append({**u, "overloaded": False})
+            continue
+        over_words = (f"element at site {sites[0]} over its overload limit" if len(sites) == 1
+                      else f"elements at sites {', '.join(map(str, sites))} over their "
+                           "overload limits")
+        why = "; ".join(filter(None, [u["why"], over_words]))
+        out.append({**u, **dict.fromkeys(OVERLOADED_READING_KEYS), "valid": False, "why": why,
+                    "correction_worse": False, "overloaded": True})
+    return out
+
+
+def overload_warning(layout: LayoutGrasp) -> str | None:
+    """The warning a grasp gives where it puts an element past its overload limit.
+
+    Args:
+        layout: one layout's grasp (:func:`grasp_layout`, units through :func:`with_overload`).
+
+    Returns:
+        One line naming the layout, its grasp force (N), the sites over their limit with the
+        largest force against its limit (N) and the units that then read nothing; None where
+        no element is past its limit.
+    """
+    over = [t for t in layout.tips if t.get("over_overload_limit")]
+    if not over:
+        return None
+    worst = max(over, key=lambda t: t["element_force_N"] / t["overload_limit_N"])
+    units = [u["unit"] for u in layout.units if u.get("overloaded")]
+    return (f"warning: {layout.name}, the grasp force {layout.total_force_N:.4g} N puts the "
+            f"elements at sites {', '.join(str(t['site']) for t in over)} past their overload "
+            f"limit (site {worst['site']}: {worst['element_force_N']:.4g} N against "
+            f"{worst['overload_limit_N']:.4g} N): the element yields or its gauge passes its "
+            f"largest strain; units {', '.join(units) or 'none'} read nothing (overloaded)")
 
 
 def correction_words(coupling: str, profile: str) -> str:

@@ -375,13 +375,27 @@ def apply_correction(K_eb, t_over_R, correction: Correction = IDENTITY, *, width
     return K, ~outside
 
 
+#: Each coordinate of :class:`FitRange` in a user's words (the element's own dimensions).
+RANGE_WORDS = {"t_over_R": "web thickness / notch radius",
+               "width_ratio": "hinge bending length / sheet thickness",
+               "web_over_sheet": "web thickness / sheet thickness",
+               "poisson_ratio": "the material's Poisson's ratio",
+               "web_mm": "web thickness, mm", "notch_radius_mm": "notch radius, mm",
+               "arm_mm": "lever arm, mm", "sheet_mm": "sheet thickness, mm",
+               "arm_over_arm_height": "arm length / arm height"}
+
+
 def warn_outside(correction: Correction, out: Mapping[str, np.ndarray], n_out: int, n: int,
                  error_rel: float) -> None:
-    """Warn that ``n_out`` of ``n`` points leave the fitted range (names the
-    coordinates, their ranges and the estimated error)."""
+    """Warn that ``n_out`` of ``n`` points leave the fitted range: each coordinate left by
+    name, in words (:data:`RANGE_WORDS`) and with its range, the estimated error and how to
+    solve without the correction. The fit's own record (``correction.source``) stays in the
+    data file: it names the studies that made it, not what a user acts on."""
     fr = correction.fit_range
-    which = ", ".join(f"{k} {getattr(fr, k)[0]:.4g} ... {getattr(fr, k)[1]:.4g}" for k in out)
+    which = ", ".join(f"{k} ({RANGE_WORDS.get(k, k)}) {getattr(fr, k)[0]:.4g} ... "
+                      f"{getattr(fr, k)[1]:.4g}" for k in out)
     warnings.warn(
         f"closed-form stiffness correction used outside its fitted range at {n_out} of {n} "
-        f"points ({which}); estimated error up to {100 * error_rel:.2g} % "
-        f"(source: {correction.source})", CorrectionRangeWarning, stacklevel=3)
+        f"points ({which}); estimated error up to {100 * error_rel:.2g} % (the correction is "
+        "fitted to fem3d solves of elements inside that range; `tactcad stiffness --model "
+        "fem3d` solves an element without it)", CorrectionRangeWarning, stacklevel=3)

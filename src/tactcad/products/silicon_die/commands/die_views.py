@@ -241,7 +241,8 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.in_use.die_grasp import (default_grasp_force_N, die_grasp,
                                                                 die_jaw)
     from tactcad.commands.options import grasp_option_error
-    from tactcad.in_use.grasp_experiment import kobj_range_warning, with_kobj_range
+    from tactcad.in_use.grasp_experiment import (kobj_range_warning, overload_warning,
+                                                 overloaded_sites, with_kobj_range)
 
     planned = _planned(design, args)
     plan = planned.plan
@@ -274,9 +275,11 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
     result = with_kobj_range(result, (lo, hi))
-    warning = kobj_range_warning(k_obj, (lo, hi))
+    warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)), overload_warning(result)) if w]
     record = {"design": str(design), "die": plan.name,
-              "K_obj_range_N_per_mm": [lo, hi], "warnings": [warning] if warning else [],
+              "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings,
+              # a beam past its breaking force: the grasp does not pass (exit 1)
+              "passed": not overloaded_sites(result.tips),
               "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": mount.jaw_length_mm,
                       "pin_to_tip_mm": jaw.pin_to_tip_mm,
                       "opening_angle_deg": jaw.opening_angle_deg,

@@ -1139,12 +1139,8 @@ def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
                      f"silicon ({BOSCH_MEAN_STRENGTH_MPA:g} MPa, {BOSCH_STRENGTH_SOURCE}; "
                      f"{rating.root_MPa:.4g} MPa at {force_N:g} N, at its beam's rated force)")]
     else:
-        accepted = rating.strength.weibull.failure_probability_max
-        strength = [(force_N * scale, f"the die's failure probability, {where}, at the "
-                                      f"{accepted:g} {rating.strength.weibull.whose} accepts")
-                    for scale, where in zip(rating.weibull_scales,
-                                            ("every beam at its rated force",
-                                             "every beam on its deepest stop"))]
+        strength = [(force_N * scale, _weibull_words(rating, where))
+                    for scale, where in zip(rating.weibull_scales, _WEIBULL_LOADINGS)]
     return [
         *strength,
         (force_N / rating.stop_over_fracture if rating.stop_over_fracture > 0 else math.inf,
@@ -1255,6 +1251,39 @@ def lighter_rating_unsaid() -> Iterator[None]:
         _PASTE_LIGHTER.reset(token)
 
 
+#: Where the die's failure probability is judged, in :func:`_rating_limits`' order.
+_WEIBULL_LOADINGS = ("every beam at its rated force", "every beam on its deepest stop")
+
+
+def _weibull_words(rating: _Rating, where: str) -> str:
+    """The failure-probability limit in words, ``where`` the loading judged."""
+    accepted = rating.strength.weibull.failure_probability_max
+    return (f"the die's failure probability, {where}, at the {accepted:g} "
+            f"{rating.strength.weibull.whose} accepts")
+
+
+def _passed_words(passed: list[tuple[float, str]], rating: _Rating) -> list[str]:
+    """The words of the limits a rating passes, each once: the failure probability passed
+    at both loadings is one limit said with both.
+
+    Args:
+        passed: (limit N, words) of each limit passed, in :func:`_rating_limits`' order.
+        rating: the rating judged.
+
+    Returns:
+        The words, in order.
+    """
+    words = [w for _, w in passed]
+    if rating.strength is None:
+        return words
+    both = [_weibull_words(rating, where) for where in _WEIBULL_LOADINGS]
+    if all(w in words for w in both):
+        at = words.index(both[0])
+        words = [w for w in words if w not in both]
+        words.insert(at, _weibull_words(rating, " and ".join(_WEIBULL_LOADINGS)))
+    return words
+
+
 def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
     """Refuse a rating past any of :func:`_rating_limits`: the refusal names every limit
     passed and pastes the rating below all of them (:func:`_lighter_rating`), or says that
@@ -1270,7 +1299,7 @@ def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_
         return
     code = next(c for (limit, _), c in zip(limits, _rating_limit_codes(rating))
                 if force_N >= limit)
-    why = "past " + "; past ".join(why for _, why in passed)
+    why = "past " + "; past ".join(_passed_words(passed, rating))
     if not _PASTE_LIGHTER.get():
         raise DesignError("--full-scale-force", force_N, "a lighter rating", why, limit=code)
     below = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
