@@ -379,12 +379,25 @@ def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: Read
         return {"grid": vals[-1], "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel,
                 "grid_source": "fem3d with the glue line and carrier meshed: the grid's "
                                "plane averaged over its area"}
-    from tactcad.mechanics.fem.fem2d import fem2d_convergence
+    from tactcad.store import kept_result
+
+    # three plane-stress solves an element: kept, so verify and check after it solve none
+    return kept_result("fem2d grid strain",
+                       lambda: _fem2d_grid_strain(g, material, chain.grid_width_mm),
+                       g, material, chain.grid_width_mm)
+
+
+def _fem2d_grid_strain(g: ElementGeometry, material: Material, grid_width_mm: float) -> dict:
+    """:func:`meshed_grid_strain_per_N` at fem2d, solved: the grid's plane along the mesh
+    sequence of ``g`` (its layer meshed), Richardson-extrapolated error, times the
+    fem3d-fitted width factor of a grid ``grid_width_mm`` wide (mm)."""
+    from tactcad.mechanics.fem.fem2d import REFINEMENT_RATIO, fem2d_convergence
     from tactcad.mechanics.gauge_strain import width_strain_factor
+    from tactcad.mechanics.richardson import richardson
 
     conv = fem2d_convergence(g, material)
     vals = [s.grid_strain / s.force_N for s in conv.solutions]
-    width = width_strain_factor(g.bare(), material, chain.grid_width_mm)
+    width = width_strain_factor(g.bare(), material, grid_width_mm)
     return {"grid": width.factor * vals[-1],
             "grid_error_rel": richardson(vals, REFINEMENT_RATIO).error_rel + width.error_rel,
             "grid_source": "fem2d with the glue line and carrier meshed: the grid's plane "
