@@ -519,8 +519,8 @@ class Project:
                 of checks finishes: the groups of
                 :data:`tactcad.checks.groups.CHECK_GROUPS` in order
                 (``requirements``: the design's verification matrix with the
-                verdicts :meth:`verify` gives by default, ``parts``, ``dxf``, ``array interference``,
-                ``array STEP``, then ``scene <name>`` per scene).
+                verdicts :meth:`verify` gives by default, ``parts``, ``dxf``,
+                ``array interference``, ``array STEP``, then ``scene <name>`` per scene).
 
         Returns:
             :class:`CheckReport`: every result with its group.
