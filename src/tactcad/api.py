@@ -584,9 +584,9 @@ class Project:
             on_group: called as ``on_group(label, results)`` when each group
                 of checks finishes: the groups of
                 :data:`tactcad.checks.groups.CHECK_GROUPS` in order
-                (``requirements``: the design's verification matrix at the
-                closed form, ``parts``, ``dxf``, ``array interference``,
-                ``array STEP``, then ``scene <name>`` per scene).
+                (``requirements``: the design's verification matrix with the
+                verdicts :meth:`verify` gives by default, ``parts``, ``dxf``,
+                ``array interference``, ``array STEP``, then ``scene <name>`` per scene).
 
         Returns:
             :class:`CheckReport`: every result with its group.

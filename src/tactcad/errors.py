@@ -147,6 +147,11 @@ class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
 
 
+class HandEditedWarning(UserWarning):
+    """Files of an earlier export changed by hand since it was written, which a partial
+    export keeps as they are but no longer lists as the export's (named in the message)."""
+
+
 class Terminated(KeyboardInterrupt):
     """The process was asked to end by a signal (SIGTERM from a CI runner or
     ``kill``, SIGHUP from a closed terminal): handled like Ctrl-C, so the run

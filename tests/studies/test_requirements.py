@@ -89,7 +89,7 @@ def test_a_requirement_the_design_cannot_meet_fails_verify_and_check_records(cap
     assert not records[0]["pass"] and records[0]["margin_rel"] < 0
     from tactcad.checks.requirement_checks import requirement_checks
 
-    failed = [c for c in requirement_checks(plan) if not c.passed]
+    failed = [c for c in requirement_checks(plan, "closed-form") if not c.passed]
     assert [c.subject for c in failed] == ["full_scale_force_N"]
     code = main(["verify", "--model", "closed-form", "--set", "requirements.full_scale_force_N=2",
                  "--json"])

@@ -150,7 +150,8 @@ def test_a_footprint_the_envelope_fills_exactly_is_undecided_not_met():
         rec = record(verification_matrix(plan, envelope_mm=(x, y, z)), "footprint_mm")
         assert rec["verdict"] == expected, footprint
         assert rec["binding_axis"] == "X" and len(rec["axes"]) == 2
-    exact = [c for c in requirement_checks(example(**{"requirements.footprint_mm": [x, y]}))
+    exact = [c for c in requirement_checks(example(**{"requirements.footprint_mm": [x, y]}),
+                                           "closed-form")
              if c.subject == "footprint_mm"]
     assert [c.status for c in exact] == ["undecided"] and exact[0].passed
     # a coarser general class gives the envelope a wider deviation

@@ -61,7 +61,7 @@ def test_check_fails_with_that_pair_and_verify_exits_1(capsys):
     from tactcad.checks.requirement_checks import requirement_checks
 
     plan = example(**{"arms.lengths_mm": LONGER_ROW_1_REFERENCE})
-    bad = [r for r in requirement_checks(plan) if not r.passed]
+    bad = [r for r in requirement_checks(plan, "closed-form") if not r.passed]
     assert [r.subject for r in bad] == ["kr_over_km"]
     assert "binds: row 1: element 2 / 1" in bad[0].detail
     lengths = ",".join(str(a) for a in LONGER_ROW_1_REFERENCE)
@@ -175,7 +175,7 @@ def test_a_stated_footprint_is_checked_against_the_arrays_envelope(capsys):
                   if r["requirement"] == "footprint_mm")
     assert record["verdict"] == "pass" and record["predicted"] == [x, y]
     tight = example(**{"requirements.footprint_mm": [40, 20]})
-    bad = [r for r in requirement_checks(tight) if not r.passed]
+    bad = [r for r in requirement_checks(tight, "closed-form") if not r.passed]
     assert [r.subject for r in bad] == ["footprint_mm"] and "binds: axis X" in bad[0].detail
     assert footprint_record([40, 30, 5], (67.0, 22.0, 6.0))["binding_axis"] == "X"
     assert footprint_record([70, 20, 10], (67.0, 22.0, 6.0))["binding_axis"] == "Y"

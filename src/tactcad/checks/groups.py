@@ -41,6 +41,9 @@ class CheckContext:
         edited: the files of the export changed (``changed``) or removed (``missing``)
             by hand since it was written, by path (:func:`tactcad.export.reuse.export_state`;
             empty for an export the check wrote), or None when not looked at.
+        requirements_model: how the requirements are judged: ``auto`` (``verify``'s
+            default, a FEM level solved only for a requirement the closed form leaves
+            undecided) or a ladder level (``closed-form``: no solve, as ``design --jaw``).
     """
 
     plan: Any
@@ -49,6 +52,7 @@ class CheckContext:
     project: Any = None
     scenes: Sequence[str] | None = None
     edited: Mapping[str, str] | None = None
+    requirements_model: str = "auto"
 
 
 @dataclass(frozen=True)
@@ -156,7 +160,8 @@ def run_groups(groups: Iterable[CheckGroup], context: CheckContext,
 
 _CHECKS = "tactcad.checks.array_checks"
 for _group in (
-        CheckGroup("requirements", "the design's verification matrix at the closed form, "
+        CheckGroup("requirements", "the design's verification matrix with verify's verdicts "
+                   "(a FEM level only for a requirement the closed form leaves undecided), "
                    "before any export", "tactcad.checks.requirement_checks", "requirement_group",
                    on_export=False),
         CheckGroup("hard stops", "each element's hard stop engages after its rated deflection "

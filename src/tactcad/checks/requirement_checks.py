@@ -1,4 +1,9 @@
-"""The design's requirements as check results (the verification matrix at the closed form)."""
+"""The design's requirements as check results: the verification matrix with the verdicts
+``tactcad verify`` gives by default (:func:`tactcad.studies.verification.verification_auto`:
+the closed form, and a higher ladder level only for a requirement it leaves undecided), so
+``check`` fails where ``verify`` fails. The solves are kept in the result store
+(:func:`tactcad.store.kept_result`): a check after a verify (or the other way round) with
+the same store solves nothing again."""
 
 from __future__ import annotations
 
@@ -7,24 +12,65 @@ from typing import Iterator
 from tactcad.checks.groups import CheckContext, Found
 from tactcad.checks.check_result import CheckResult
 
+#: ``model`` of :func:`requirement_checks` that climbs the ladder as ``verify`` does.
+AUTO = "auto"
+
 
 def requirement_group(context: CheckContext) -> Iterator[Found]:
-    """``requirements``: the verification matrix of the design at the closed form."""
-    yield "requirements", requirement_checks(context.plan)
+    """``requirements``: the verification matrix of the design at ``context.requirements_model``
+    (default ``auto``, verify's own verdicts)."""
+    yield "requirements", requirement_checks(context.plan, context.requirements_model)
 
 
-def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
-    """One :class:`CheckResult` per requirement of ``plan`` (see
-    :func:`tactcad.studies.verification.verification_matrix`): failed when
-    its verdict is ``fail``; an ``undecided`` one (margin inside the level's
-    error estimate) passes, marked undecided (``status``), with a note that
-    ``tactcad verify`` decides it."""
+def requirement_records(plan, model: str = AUTO) -> list[dict]:
+    """The verification records of ``plan`` at ``model``.
+
+    Args:
+        plan: the validated design.
+        model: ``auto`` (verify's default: each requirement at the cheapest level that
+            decides it, FEM levels solved only for one the closed form leaves undecided)
+            or a ladder level (every requirement at that level).
+
+    Returns:
+        One record per requirement, as :func:`tactcad.studies.verification.verification_matrix`
+        makes them (with ``decided_by`` and ``levels_tried`` under ``auto``).
+
+    Raises:
+        UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
+        DesignError: the material has no yield strength.
+    """
     from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.studies.strength_studies import element_stress
+    from tactcad.studies.verification import (requirements_of, verification_auto,
+                                              verification_matrix)
+
+    envelope = array_envelope_mm(plan)
+    if model != AUTO:
+        return verification_matrix(plan, model, envelope_mm=envelope,
+                                   stress=None if model == "closed-form" else element_stress)
+    records, _ = verification_auto(plan, None, requirements_of(plan), stress=element_stress,
+                                   envelope_mm=envelope)
+    return records
+
+
+def requirement_checks(plan, model: str = AUTO) -> list[CheckResult]:
+    """One :class:`CheckResult` per requirement of ``plan`` (see
+    :func:`requirement_records`): failed when its verdict is ``fail``; an ``undecided`` one
+    (margin inside the error estimate of the highest level that computes it) passes, marked
+    undecided (``status``).
+
+    Args:
+        plan: the validated design.
+        model: ``auto`` (default, the verdicts ``tactcad verify`` gives) or a ladder level.
+
+    Returns:
+        The results in the matrix's order.
+    """
     from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, binding_text, margin_text,
-                                              percent_text, value_text, verification_matrix)
+                                              percent_text, value_text)
 
     out = []
-    for r in verification_matrix(plan, model, envelope_mm=array_envelope_mm(plan)):
+    for r in requirement_records(plan, model):
         detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
                   f"{value_text(r['predicted'])}, margin {margin_text(r)} "
                   f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")
@@ -33,8 +79,17 @@ def requirement_checks(plan, model: str = "closed-form") -> list[CheckResult]:
         if r["requirement"] == GRID_POWER_REQUIREMENT and r["verdict"] != "pass":
             detail += f"; {r['basis']}"
         elif r["verdict"] == "undecided":
-            detail += ("; no level computes it closer" if r["level_fixed"] else
-                       "; tactcad verify --model auto decides it up the ladder")
+            detail += "; " + _undecided_words(r, model)
         out.append(CheckResult("requirement", r["requirement"], r["verdict"] != "fail", detail,
                                undecided=r["verdict"] == "undecided"))
     return out
+
+
+def _undecided_words(record: dict, model: str) -> str:
+    """Why an undecided requirement stays so: no level computes it closer, the ladder's
+    highest level tried left it inside its error, or (one level asked) verify climbs."""
+    if record["level_fixed"]:
+        return "no level computes it closer"
+    if model == AUTO:
+        return f"undecided up to the ladder's top ({record['levels_tried'][-1]})"
+    return "tactcad verify --model auto decides it up the ladder"

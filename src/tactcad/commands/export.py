@@ -28,8 +28,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(repeatable; the manifest is left as it is). `tactcad scenes` lists them")
     p.add_argument("--only", metavar="KINDS", action="append", default=None,
                    help="write only these kinds of file, comma-separated: " + kinds_help()
-                        + "; the manifest lists only what was written and says so under "
-                          "\"partial\" (default: every kind)")
+                        + "; into an export of the same design the other files are kept "
+                          "and the manifest lists them all, naming under \"partial\" what was "
+                          "written now; another design's export is refused (default: every "
+                          "kind)")
     p.add_argument("--part", metavar="NAME", action="append", default=None,
                    help="write only this part's own files: its STEP, its drawing and, for "
                         "a part cut from sheet, its DXF profile dxf/<part>_qty<n>.dxf, not the "

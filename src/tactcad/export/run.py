@@ -12,7 +12,9 @@ only when all of them and the manifest exist does that folder take the
 export folder's place, in one step (:func:`tactcad.atomic.publish_dir`). A
 failed or killed run leaves the previous export whole (its staging folder is
 removed by the next run); files an earlier export wrote and this one does not
-are gone with the old folder, files tactcad never wrote are kept.
+are gone with the old folder, files tactcad never wrote are kept. A partial export
+(``--only``/``--part``) of the same design keeps the earlier export's other files (carried
+into the staging folder, so the swap stays one step) and lists them in its manifest.
 """
 
 from __future__ import annotations
@@ -32,8 +34,9 @@ from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
                             writing_lock)
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
-from tactcad.export.export_owner import (default_product_name, refuse_another_designs_export,
-                                         written_by_tactcad)
+from tactcad.export.export_owner import (EarlierExport, default_product_name,
+                                         kept_by_partial_export, refuse_another_designs_export,
+                                         stale_check_results, written_by_tactcad)
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, scene_jobs
@@ -53,20 +56,25 @@ class ExportResult:
     builds: int = 0  # solids built in this run
     distinct_parts: int = 0  # distinct parts of the design (array, scenes, the kit's samples)
     worker_jobs: int = 0  # jobs made by the run's second process
+    kept: list[str] = field(default_factory=list)  # a partial export's files of the earlier one
 
     def as_json(self) -> dict:
-        """Summary for ``--json``: seconds, job and build counts, files (path, bytes, sha256)."""
+        """Summary for ``--json``: seconds, job and build counts, files written (path,
+        bytes, sha256) and ``kept``: the files of the earlier export a partial one kept."""
         return {"out": str(self.out_dir), "seconds": round(self.seconds, 3),
                 "jobs_run": self.jobs_run, "jobs_reused": self.jobs_reused,
                 "builds": self.builds, "distinct_parts": self.distinct_parts,
                 "files": [{k: f[k] for k in ("path", "bytes", "sha256", "part") if k in f}
-                          for f in self.files]}
+                          for f in self.files], "kept": list(self.kept)}
 
     def summary_lines(self) -> list[str]:
         lines = [f"{f['path']:<34} {f['bytes']:>9,d} B  {f['part']}" for f in self.files]
         total = sum(f["bytes"] for f in self.files)
         lines.append(f"{len(self.files)} files, {total:,d} B in {self.out_dir} ({self.seconds:.1f} s; "
                      f"{self.jobs_run} jobs run, {self.jobs_reused} reused from the cache)")
+        if self.kept:
+            lines.append(f"{len(self.kept)} other files of the earlier export of this design "
+                         "kept as they were (listed in the manifest)")
         return lines
 
 
@@ -244,8 +252,18 @@ def _write_set(out_dir: Path, jobs_of: Callable[[Run], list[Job]], project: Proj
     """Build the files of ``jobs_of`` in a staging folder beside ``out_dir``,
     then put that folder in the place of ``out_dir`` in one step
     (:func:`tactcad.atomic.publish_dir`). A full export keeps, of the old
-    folder, only the files no tactcad export wrote; a partial one
-    (``with_manifest`` False) keeps every old file it does not rewrite."""
+    folder, only the files no tactcad export wrote (and no check results of another
+    design: :func:`tactcad.export.export_owner.stale_check_results`); a partial one
+    (``partial``: ``--only``/``--part``) keeps the other files of an earlier export of the
+    same design too, listing them in its manifest, and refuses a folder holding another
+    design's (:func:`tactcad.export.export_owner.kept_by_partial_export`); the scenes alone
+    (``with_manifest`` False) keep every old file they do not rewrite.
+
+    Raises:
+        DesignError: a partial export into a folder holding an export of another design
+            whose files it would leave beside its own.
+        ExportPathError: ``out_dir`` refused (:func:`check_out_dir`).
+    """
     t0 = time.perf_counter()
     out = check_out_dir(out_dir)
     with writing_lock(out, "--out"):  # a second run at once would remove this one's staging
@@ -272,16 +290,30 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
         for r in records:
             _inside(staging, r["path"])
         files = [{**r, "bytes": (staging / r["path"]).stat().st_size} for r in records]
+        earlier = EarlierExport()
+        if with_manifest and partial is not None and out.is_dir():
+            # a partial export refreshes its kinds; the same design's other files stay
+            earlier = kept_by_partial_export(out, project.plan.name, project.plan.design_hash,
+                                             [r["path"] for r in records])
+            kept_paths = {f["path"] for f in earlier.kept}
+            carry_over(out, staging, lambda rel: rel in kept_paths)
+            warn_changed_by_hand(out, earlier.changed)
         if with_manifest:
             man = manifest(project.plan, staging, records)
+            man["files"] = in_earlier_order(man["files"], earlier)
             if partial is not None:  # a selection of the jobs (export --only/--part)
-                man["partial"] = partial
+                man["partial"] = partial_with_kept(partial, earlier)
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
             write_bytes_atomic(staging / MANIFEST, man_bytes)
-            files = man["files"] + [{"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
+            written = {r["path"] for r in records}
+            files = [f for f in man["files"] if f["path"] in written] + [
+                {"path": MANIFEST, "bytes": len(man_bytes), "part": "-"}]
         if out.is_dir():
-            ours = written_by_tactcad(out) if with_manifest else set()
-            carry_over(out, staging, lambda rel: rel not in ours)
+            # the earlier export's files changed by hand are the lab's now: never removed
+            ours = written_by_tactcad(out) - set(earlier.changed) if with_manifest else set()
+            # check results of another design belong to the export they checked, not this one
+            stale = stale_check_results(out, project.plan.design_hash) if with_manifest else set()
+            carry_over(out, staging, lambda rel: rel not in ours and rel not in stale)
         os.chmod(staging, 0o755)  # mkdtemp makes it private; an export folder is for sharing
         publish_dir(staging, out)
         published = True  # staging now holds the old export, which publish_dir removed
@@ -299,7 +331,42 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             warn_left_behind(remove_tree(staging))
     builds = run.parts.builds if "parts" in vars(run) else 0  # no solid asked: kernel never loaded
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
-                        builds, run.distinct_parts, len(run.worker_made))
+                        builds, run.distinct_parts, len(run.worker_made),
+                        [f["path"] for f in earlier.kept])
+
+
+def in_earlier_order(files: list[dict], earlier: EarlierExport) -> list[dict]:
+    """The manifest's records of the files written now and of those kept of the earlier
+    export, in the earlier manifest's order (a file it did not list after them, in job order)."""
+    place = {path: k for k, path in enumerate(earlier.order)}
+    records = list(files) + list(earlier.kept)
+    return sorted(records, key=lambda f: place.get(f["path"], len(place)))
+
+
+def partial_with_kept(partial: dict, earlier: EarlierExport) -> dict:
+    """The manifest's ``partial`` record: what was written now (the selection and its
+    jobs) and, when files of the earlier export of the same design were kept, their paths."""
+    if not earlier.kept:
+        return partial
+    return {**partial, "kept": [f["path"] for f in earlier.kept],
+            "note": "a partial export: the jobs listed here wrote their files now; the files "
+                    "under kept are the earlier export's of the same design (sha256 checked)"}
+
+
+def warn_changed_by_hand(out: Path, changed: Sequence[str]) -> None:
+    """One warning naming the earlier export's files changed by hand since, which a partial
+    export keeps as they are but no longer lists in the manifest; nothing when none."""
+    if changed:
+        import warnings
+
+        from tactcad.errors import HandEditedWarning
+
+        shown = ", ".join(changed[:5]) + (f" and {len(changed) - 5} more" if len(changed) > 5
+                                          else "")
+        warnings.warn(f"{len(changed)} file(s) of the export in {out} changed by hand since it "
+                      f"was written, kept as they are but no longer listed in its manifest: "
+                      f"{shown}; `tactcad export` without --only/--part writes them again",
+                      HandEditedWarning, stacklevel=2)
 
 
 def export_scenes(project: Project, out_dir: str | Path, names: Sequence[str], log: Log = print,

@@ -380,9 +380,13 @@ def meshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain: Read
                 "grid_source": "fem3d with the glue line and carrier meshed: the grid's "
                                "plane averaged over its area"}
     from tactcad.mechanics.fem.fem2d import fem2d_convergence, grid_plane_strain_per_N
+    from tactcad.store import kept_result
 
-    return grid_plane_strain_per_N(fem2d_convergence(g, material), g, material,
-                                   chain.grid_width_mm)
+    # three plane-stress solves an element: kept, so verify and check after it solve none
+    return kept_result("fem2d grid strain",
+                       lambda: grid_plane_strain_per_N(fem2d_convergence(g, material), g,
+                                                       material, chain.grid_width_mm),
+                       g, material, chain.grid_width_mm)
 
 
 # ---------------------------------------------------------------------------
