@@ -375,9 +375,13 @@ def test_partial_export_manifest_lists_only_what_was_written(tmp_path):
     proc = run_cli("export", "--part", "element_a4mm", "--only", "step", "--out", str(out),
                    "--cache", str(store), "--json")
     assert proc.returncode == 0 and proc.stderr == ""
-    files = [f["path"] for f in json.loads(proc.stdout)["files"]]
-    assert files == ["step/element_a4mm.step", "manifest.json"]
-    assert not (out / "bom.csv").exists()  # the earlier partial set is replaced as a whole
+    written = json.loads(proc.stdout)
+    # what ran now, then the same design's earlier files, kept and listed as they were
+    assert written["files"][0]["path"] == "step/element_a4mm.step"
+    assert sorted(written["kept"]) == sorted(paths)
+    man = json.loads((out / "manifest.json").read_text())
+    assert sorted(f["path"] for f in man["files"]) == sorted(paths + ["step/element_a4mm.step"])
+    assert (out / "bom.csv").read_text(encoding="utf-8-sig") == bom
 
 
 # --- check reuses the export it checks ---------------------------------------------------------

@@ -220,8 +220,9 @@ def test_the_labs_12_mm_jaw_too_low_is_refused_with_the_keys_to_write(tmp_path, 
 @pytest.mark.slow
 def test_the_labs_12_mm_jaw_designs_and_passes_its_check(tmp_path, capsys):
     # its open scene put the jaw into the tissue slab at 45 degrees; its pocket and shaft
-    # could not be stated
-    designed_or_refused([*LAB_TARGETS, "--full-scale-force", "0.099", "--jaw", LAB_JAW],
+    # could not be stated (0.08 N: a force its combs carry as the closed form decides; at
+    # 0.099 N the best predicts 0.089 N, which no longer counts)
+    designed_or_refused([*LAB_TARGETS, "--full-scale-force", "0.08", "--jaw", LAB_JAW],
                         tmp_path / "lab", capsys)
     written = (tmp_path / "lab" / "lab.toml").read_text(encoding="utf-8")
     assert "shaft_diameter_mm = 12.0" in written and "pin_inset_mm = -6.0" in written

@@ -745,10 +745,10 @@ def refuse_a_foreign_folder(out: Path, name: str) -> None:
 
     refuse_system_folder("--out", out, out)
     refuse_another_designs_export(out, PRODUCT_NAME, name)
-    check_out_dir(out)  # the folder is swapped whole, as an array's export is
     reason = None if out.is_dir() else unmakeable_folder(out)
     if reason is not None:  # before the staging folder beside it is made
         raise DesignError("--out", str(out), "a folder that can be made", reason)
+    check_out_dir(out)  # the folder is swapped whole, as an array's export is
 
 
 def _record_of(path: Path) -> dict | None:
