@@ -212,6 +212,21 @@ def default_store(tmp_path_factory) -> Path:
 
 
 @pytest.fixture(scope="session")
+def verified_store(tmp_path_factory, default_store) -> Path:
+    """:func:`default_store` with the solves ``verify`` and ``check`` decide the default
+    design's requirements with (each undecided one up the ladder: its full-scale force at
+    fem3d), made once per test run, so the tests that check the default design read them
+    back instead of each solving them again. Read only: copy it (:func:`warm_store_copy`)
+    to add to it."""
+    import tactcad
+
+    def fill(store: Path) -> None:
+        shutil.copytree(default_store, store)
+        tactcad.load().verify(cache=store)
+    return _once_per_run(tmp_path_factory, "default-design-verified-store", fill)
+
+
+@pytest.fixture(scope="session")
 def example_exported(tmp_path_factory) -> Path:
     """The non-paper example (:data:`EXAMPLE_DESIGN`) exported once per worker,
     its jobs from a store filled once per run; tests that add files (``check``)

@@ -62,11 +62,14 @@ def test_help_junit_and_page_read_the_registry(with_dummy, capsys):
 
 
 @pytest.mark.slow
-def test_a_registered_group_runs_in_check(with_dummy, exported):
+def test_a_registered_group_runs_in_check(with_dummy, exported, verified_store, tmp_path):
     import tactcad
 
+    from conftest import warm_store_copy
+
     out, _ = exported
-    report = tactcad.load().check(out, cache=False)
+    # the requirements' solves read back from the run's store, not solved again here
+    report = tactcad.load().check(out, cache=warm_store_copy(verified_store, tmp_path / "s"))
     labels = [label for label, _ in report.groups]
     assert labels[:8] == ["requirements", "rigs", "process", "export files", "parts", "dxf",
                           "array interference", "array STEP"]

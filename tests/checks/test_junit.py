@@ -71,11 +71,14 @@ def test_check_junit_refuses_a_path_in_no_folder(tmp_path, capsys):
 
 
 @pytest.mark.slow
-def test_check_junit_matches_the_checks_run_and_a_failure_fails(tmp_path, capsys, monkeypatch):
+def test_check_junit_matches_the_checks_run_and_a_failure_fails(tmp_path, capsys, monkeypatch,
+                                                                verified_store):
+    from conftest import warm_store_copy
     from tactcad.checks import scene_checks as scenes
 
     out, report = tmp_path / "out", tmp_path / "report.xml"
-    args = ["check", "--scene", "wirecut", "--out", str(out), "--cache", str(tmp_path / "store"),
+    store = warm_store_copy(verified_store, tmp_path / "store")  # the export's and verify's
+    args = ["check", "--scene", "wirecut", "--out", str(out), "--cache", str(store),
             "--junit", str(report), "--json"]
     assert cli.main(args) == 0
     checks = json.loads(capsys.readouterr().out)["checks"]

@@ -386,8 +386,8 @@ def test_partial_export_manifest_lists_only_what_was_written(tmp_path):
 
 # --- check reuses the export it checks ---------------------------------------------------------
 @pytest.mark.slow
-def test_check_reuses_a_current_export_and_leaves_a_hand_edit(tmp_path, default_store):
-    out, store = tmp_path / "out", warm_store_copy(default_store, tmp_path / "store")
+def test_check_reuses_a_current_export_and_leaves_a_hand_edit(tmp_path, verified_store):
+    out, store = tmp_path / "out", warm_store_copy(verified_store, tmp_path / "store")
     assert run_cli("export", "--out", str(out), "--cache", str(store), "--quiet").returncode == 0
     proc = run_cli("check", "--scene", "wirecut", "--out", str(out), "--cache", str(store),
                    "--json")
