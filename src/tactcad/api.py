@@ -513,6 +513,24 @@ class Project:
         return plain(budget_record(self.plan, model, force_N, delta_T_K)[0])
 
     @keyword_errors
+    def crosstalk(self, model: str = "stack-beam") -> dict:
+        """The clamped stack's crosstalk, as ``tactcad crosstalk --json`` gives it (without
+        ``--sweep``): the n x n gauge sensitivity (1/N), the tip displacements (mm/N),
+        ``crosstalk_rel``, the decoupling matrix and, at the rated force, each gauge's
+        crosstalk in newtons against its force resolution.
+
+        Args:
+            model: a crosstalk level (``stack-beam`` ...; ``tactcad crosstalk --help``).
+
+        Raises:
+            UnknownCrosstalkModelError: ``model`` is no crosstalk level.
+            DesignError: the design is no clamped stack.
+        """
+        from tactcad.studies.project_reports import crosstalk_record
+
+        return plain(crosstalk_record(self.plan, model)[0])
+
+    @keyword_errors
     def verify(self, model: str = "auto", progress: Progress | None = None,
                cache: str | Path | None | bool = True) -> "Verification":
         """The verification matrix of the design's requirements.

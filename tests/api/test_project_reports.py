@@ -1,5 +1,5 @@
-"""A metal array's read-out, thermal drift and K_obj budget from the Python API: the same
-numbers as the commands' ``--json``, and refusals naming the keyword."""
+"""A metal array's read-out, thermal drift, K_obj budget and crosstalk from the Python API:
+the same numbers as the commands' ``--json``, and refusals naming the keyword."""
 
 from __future__ import annotations
 
@@ -37,6 +37,7 @@ def without_seconds(record):
     ("readout", "readout", {}, ()),
     ("thermal", "thermal", {"element": 2}, ("--element", "2")),
     ("budget", "budget", {"delta_T_K": 3.0}, ("--delta-T", "3")),
+    ("crosstalk", "crosstalk", {}, ()),
 ])
 def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
     project = tactcad.load(str(DESIGN))
@@ -56,3 +57,13 @@ def test_the_apis_reports_refuse_naming_the_keyword(method, kwargs, named):
     with pytest.raises(DesignError) as caught:
         getattr(project, method)(**kwargs)
     assert caught.value.field == named
+
+
+def test_the_apis_crosstalk_refuses_an_unknown_level_naming_the_levels():
+    from tactcad.mechanics.stack_crosstalk import UnknownCrosstalkModelError, crosstalk_models
+
+    with pytest.raises(UnknownCrosstalkModelError) as caught:
+        tactcad.load(str(DESIGN)).crosstalk(model="no-such-level")
+    assert "'no-such-level'" in str(caught.value)
+    assert all(level in str(caught.value) for level in crosstalk_models())
+

@@ -38,33 +38,19 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.mechanics.stack_crosstalk import plan_crosstalk
+    from tactcad.studies.project_reports import crosstalk_record
 
     shown = product_view("crosstalk", args)  # a silicon die's design: through its handle
     if shown is not None:
         return shown
     plan = plan_from_args(args)
-    result = plan_crosstalk(plan, args.model)
-    in_force = _in_force(plan, result)
+    record, result = crosstalk_record(plan, args.model)
     rows = _sweep(plan, args) if args.sweep else None
     if args.json:
-        print(dumps({"design": plan.name, **result.as_json(), "in_force": in_force,
-                     **({} if rows is None else {"sweep": rows})}, indent=1))
+        print(dumps({**record, **({} if rows is None else {"sweep": rows})}, indent=1))
         return 0
-    print(render(plan.name, result, rows, in_force))
+    print(render(plan.name, result, rows, record["in_force"]))
     return 0
-
-
-def _in_force(plan, result) -> dict:
-    """The crosstalk in newtons at the rated full-scale force against each gauge's force
-    resolution through the design's read-out chain (closed form)."""
-    from tactcad.mechanics.readout_chain import element_force_resolution_N
-    from tactcad.mechanics.stack_crosstalk import crosstalk_in_force
-    from tactcad.studies.verification import rated_full_scale_force
-
-    per_part = element_force_resolution_N(plan)
-    step = {s.number: per_part[s.geometry.part_name]["dF"] for s in plan.slots}
-    return crosstalk_in_force(result, rated_full_scale_force(plan), step)
 
 
 def _sweep(plan, args) -> list[dict]:

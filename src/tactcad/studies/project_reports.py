@@ -96,3 +96,30 @@ def budget_record(plan, model: str = "closed-form", force_N: float | None = None
               "force_reason": "--force" if force_N is not None
               else f"full-scale force: {req.reasons['full_scale_force_N']}"}
     return record, budget
+
+
+def crosstalk_record(plan, model: str = "stack-beam") -> tuple[dict, Any]:
+    """The clamped stack's crosstalk (:func:`tactcad.mechanics.stack_crosstalk.plan_crosstalk`:
+    the n x n gauge sensitivity, tip displacements, crosstalk_rel, the decoupling matrix)
+    and, at the rated full-scale force, each gauge's crosstalk in newtons against its force
+    resolution through the design's read-out chain (closed form).
+
+    Args:
+        plan: the design's plan. model: a crosstalk level (``stack-beam`` ...).
+
+    Returns:
+        (the record ``tactcad crosstalk --json`` prints, less its ``--sweep``; the result).
+
+    Raises:
+        UnknownCrosstalkModelError: ``model`` is no crosstalk level.
+        DesignError: the plan's construction is no clamped stack.
+    """
+    from tactcad.mechanics.readout_chain import element_force_resolution_N
+    from tactcad.mechanics.stack_crosstalk import crosstalk_in_force, plan_crosstalk
+    from tactcad.studies.verification import rated_full_scale_force
+
+    result = plan_crosstalk(plan, model)
+    per_part = element_force_resolution_N(plan)
+    step = {s.number: per_part[s.geometry.part_name]["dF"] for s in plan.slots}
+    return {"design": plan.name, **result.as_json(),
+            "in_force": crosstalk_in_force(result, rated_full_scale_force(plan), step)}, result
