@@ -463,7 +463,7 @@ class Project:
         from tactcad.studies.project_reports import readout_record
 
         report = readout_record(self.plan, model, self._report)
-        return plain(with_measured_sensitivities(report, self.plan, model).as_json())
+        return with_measured_sensitivities(report, self.plan, model).as_json()
 
     @keyword_errors
     def thermal(self, model: str = "closed-form", element: int | None = None) -> dict:
@@ -478,11 +478,9 @@ class Project:
         """
         from tactcad.studies.project_reports import thermal_record
 
-        if element is not None and (isinstance(element, bool) or not isinstance(element, int)):
-            from tactcad.errors import DesignError
-
-            raise DesignError("--element", element, "an integer element number")
-        return plain(thermal_record(self.plan, model, element).as_json())
+        if element is not None:
+            element = element_number(element, len(self.plan.slots), "element")
+        return thermal_record(self.plan, model, element).as_json()
 
     @keyword_errors
     def budget(self, model: str = "closed-form", force_N: float | None = None,
@@ -510,7 +508,7 @@ class Project:
                     or not lo <= value <= hi or (lo_open and value <= lo):
                 raise DesignError(name, value, f"{lo:g} {'<' if lo_open else '<='} value "
                                                f"<= {hi:g} ({'N' if lo_open else 'K'})")
-        return plain(budget_record(self.plan, model, force_N, delta_T_K)[0])
+        return budget_record(self.plan, model, force_N, delta_T_K)[0]
 
     @keyword_errors
     def crosstalk(self, model: str = "stack-beam") -> dict:
@@ -528,7 +526,7 @@ class Project:
         """
         from tactcad.studies.project_reports import crosstalk_record
 
-        return plain(crosstalk_record(self.plan, model)[0])
+        return crosstalk_record(self.plan, model)[0]
 
     @keyword_errors
     def verify(self, model: str = "auto", progress: Progress | None = None,
@@ -669,11 +667,15 @@ def _edits_said(edited: Mapping[str, str]) -> str:
             "left as they are and failing the export files check")
 
 
-def element_number(number: Any, count: int) -> int:
+def element_number(number: Any, count: int, field: str = "number") -> int:
     """``number`` checked as an element's number: an integer (not a bool) in 1 ... ``count``.
 
+    Args:
+        number: the value given. count: the design's elements. field: the argument that
+            gave it, named in the refusal.
+
     Raises:
-        DesignError: naming the argument ``number``, its value and "an integer 1 ... N".
+        DesignError: naming ``field``, the value and "an integer 1 ... N".
     """
     import numbers
 
@@ -681,9 +683,9 @@ def element_number(number: Any, count: int) -> int:
 
     allowed = f"an integer 1 ... {count} (the design's element numbers)"
     if isinstance(number, bool) or not isinstance(number, numbers.Integral):
-        raise DesignError("number", number, allowed)
+        raise DesignError(field, number, allowed)
     if not 1 <= int(number) <= count:
-        raise DesignError("number", number, allowed)
+        raise DesignError(field, number, allowed)
     return int(number)
 
 

@@ -660,13 +660,19 @@ def force_bound(records: list[dict], limits: list) -> ForceBound:
     """A judged candidate's :class:`ForceBound`: its full-scale-force record's binding
     force and error, and its gauge limits (``limits``: :func:`plan_limits` at the closed
     form), none of which depend on the force its stops were set for."""
-    from tactcad.mechanics.limits import GAUGE_LIMITS
-
     full = next((r for r in records if r["requirement"] == "full_scale_force_N"), None)
     return ForceBound(binding_force_N=None if full is None else full["predicted"],
                       binding_error_rel=None if full is None else full["error_estimate_rel"],
-                      gauge_limits=tuple((lim.force_N, lim.error_estimate_rel) for lim in limits
-                                         if lim.limit in GAUGE_LIMITS))
+                      gauge_limits=gauge_bounds(limits))
+
+
+def gauge_bounds(limits: list) -> tuple[tuple[float, float], ...]:
+    """(force N, error estimate) of each gauge limit among ``limits`` (:func:`plan_limits`
+    at the closed form): a :class:`ForceBound`'s ``gauge_limits``."""
+    from tactcad.mechanics.limits import GAUGE_LIMITS
+
+    return tuple((lim.force_N, lim.error_estimate_rel) for lim in limits
+                 if lim.limit in GAUGE_LIMITS)
 
 
 def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
@@ -843,12 +849,11 @@ def limits_bound(limits: list) -> ForceBound:
     Returns:
         The bound.
     """
-    from tactcad.mechanics.limits import GAUGE_LIMITS, binding
+    from tactcad.mechanics.limits import binding
 
     b = binding(limits)
     return ForceBound(binding_force_N=b.force_N, binding_error_rel=b.error_estimate_rel,
-                      gauge_limits=tuple((lim.force_N, lim.error_estimate_rel) for lim in limits
-                                         if lim.limit in GAUGE_LIMITS))
+                      gauge_limits=gauge_bounds(limits))
 
 
 def sketched_candidate(d: dict, sheet: float, km_scale: float, plan: Any, bound: ForceBound
@@ -1090,8 +1095,9 @@ def comb_counts(base: dict, force_N: float, columns: int, room: Any, targets: Ta
                 bounds: dict[tuple[float, float], ForceBound | None] | None = None) -> bool:
     """True when some sheet's comb at some K_m scale counts at a full-scale force of
     ``force_N`` (N) and carries it as the closed form decides it (:func:`carries_decided`:
-    the force a refusal offers to paste designs a comb that passes); tried in ``order`` ((sheet mm, K_m scale) pairs; default every sheet
-    of :func:`sheets_of` at every scale), stopping at the first that counts.
+    the force a refusal offers to paste designs a comb that passes); tried in ``order``
+    ((sheet mm, K_m scale) pairs; default every sheet of :func:`sheets_of` at every scale),
+    stopping at the first that counts.
 
     ``bounds`` ((sheet, scale) -> :class:`ForceBound`, kept over one refusal's calls):
     a pair whose bound fails at ``force_N`` is not judged again (the answer is the same,
