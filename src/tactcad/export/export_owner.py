@@ -13,7 +13,6 @@ it would leave beside its own; check results of another design are never carried
 
 from __future__ import annotations
 
-import hashlib
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -133,6 +132,8 @@ def kept_by_partial_export(out: Path, name: str, design_sha256: str,
             sha256) with files the partial export does not write again: the folder would
             mix the two designs' files.
     """
+    from tactcad.export.reuse import file_change
+
     try:
         manifest = json.loads((Path(out) / MANIFEST).read_text(encoding="utf-8"))
         earlier_sha = manifest["design"]["sha256"]
@@ -153,23 +154,12 @@ def kept_by_partial_export(out: Path, name: str, design_sha256: str,
         return EarlierExport(order=tuple(f["path"] for f in listed))
     kept, changed = [], []
     for f in others:
-        how = _file_change(Path(out) / f["path"], f.get("sha256"))
+        how = file_change(Path(out) / f["path"], f.get("sha256"))
         if how is None:
             kept.append(f)
         elif how == "changed":
             changed.append(f["path"])
     return EarlierExport(tuple(kept), tuple(changed), tuple(f["path"] for f in listed))
-
-
-def _file_change(path: Path, sha256: object) -> str | None:
-    """``changed`` when the file at ``path`` has another sha256 than ``sha256``,
-    ``missing`` when it cannot be read, None when it is as listed."""
-    try:
-        with open(path, "rb") as fh:
-            found = hashlib.file_digest(fh, "sha256").hexdigest()
-    except OSError:
-        return "missing"
-    return None if found == sha256 else "changed"
 
 
 def check_results_design(out: Path) -> str | None:

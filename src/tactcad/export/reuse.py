@@ -95,7 +95,7 @@ def export_state(out_dir: str | Path, design: Mapping[str, Any]) -> ExportState:
         return ExportState(f"{MANIFEST} unreadable ({type(exc).__name__})")
     if not same:
         return ExportState("made from another design")
-    edited = {rel: how for rel, want in listed if (how := _file_change(out / rel, want))}
+    edited = {rel: how for rel, want in listed if (how := file_change(out / rel, want))}
     if edited:  # work done by hand is never overwritten by a check
         return ExportState(None, edited)
     if "partial" in man:
@@ -105,7 +105,7 @@ def export_state(out_dir: str | Path, design: Mapping[str, Any]) -> ExportState:
     return ExportState(None)
 
 
-def _file_change(path: Path, sha256: str) -> str | None:
+def file_change(path: Path, sha256: object) -> str | None:
     """``changed`` when the file at ``path`` has another sha256, ``missing`` when it cannot
     be read, None when it is as listed."""
     try:
