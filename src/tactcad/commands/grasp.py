@@ -351,6 +351,8 @@ def unit_note(unit: dict) -> str:
 
 def render(record: dict) -> str:
     """The grasp and the leads as text."""
+    from tactcad.in_use.grasp_experiment import overloaded_sites
+
     j = record["jaw"]
     lines = [f"Grasp of {record['design']} ({record['model']}): pin at "
              f"({j['pivot_u_mm']:g}, {j['pivot_v_mm']:g}) mm, pin to tip "
@@ -368,7 +370,7 @@ def render(record: dict) -> str:
             lines += ["", f"{lay['layout']}: the design's own layout (as laid out, above)"]
             continue
         over = [t["site"] for t in lay["tips"] if t["over_rating"]]
-        damaged = [t["site"] for t in lay["tips"] if t["over_overload_limit"]]
+        damaged = overloaded_sites(lay["tips"])
         stops = [t["site"] for t in lay["tips"] if t["on_stop"]]
         crushed = [t["site"] for t in lay["tips"] if t.get("past_linear_tissue")]
         if crushed:
