@@ -366,7 +366,7 @@ def strangers():
 
 
 def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address(
-        strangers, monkeypatch):
+        strangers, monkeypatch, tmp_path):
     from tactcad.studies import sweeps
 
     monkeypatch.setattr(sweeps, "SCHEDULER_TIMEOUT_S", 3.0)
@@ -374,8 +374,9 @@ def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address
     for address, words in ((junk, "not a Dask scheduler"),
                            (http_server, "no Dask scheduler answers")):
         start = time.monotonic()
-        r = run_cli("atlas", "--jaw", "5", "--scheduler", address, "--json")
+        r = run_cli("atlas", "--jaw", "5", "--scheduler", address, "--json", cwd=tmp_path)
         assert time.monotonic() - start < 8.0, address
+        assert not (tmp_path / "exports").exists()  # refused: no folder left behind
         assert r.returncode == 2, r.stdout + r.stderr
         message = json.loads(r.stdout)["error"]["message"]
         assert message.startswith(f"--scheduler {address}: ") and words in message

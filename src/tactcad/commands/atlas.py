@@ -193,7 +193,47 @@ def run(args: argparse.Namespace) -> int:
     jaw, default_out = ((args.jaw, "exports/atlas") if args.project is None
                         else project_jaw(args.project))
     atlas = jaw_atlas(jaw, args.material, (int(bounds["columns"][0]), int(bounds["columns"][1])))
+    made = first_missing(args.out or default_out)
     out = writable_folder(args.out or default_out)
+    try:
+        return atlas_into(out, atlas, points, bounds, jaw, args)
+    except BaseException:  # a refusal or a stop after the folder was made: none is left
+        remove_empty_made(out, made)
+        raise
+
+
+def first_missing(out: str) -> Path | None:
+    """The outermost folder of ``out`` (absolute) that does not exist yet, which the run
+    makes; None when ``out`` exists."""
+    import os
+
+    folder = Path(os.path.abspath(os.path.expanduser(out)))
+    missing = None
+    for f in (folder, *folder.parents):
+        if f.exists():
+            break
+        missing = f
+    return missing
+
+
+def remove_empty_made(folder: Path, made: Path | None) -> None:
+    """Remove ``folder`` and its parents up to ``made`` (the outermost this run made) while
+    they are empty: a run refused after making its ``--out`` leaves nothing behind."""
+    if made is None:
+        return
+    for f in (folder, *folder.parents):
+        try:
+            f.rmdir()  # only an empty folder goes
+        except OSError:
+            return
+        if f == made:
+            return
+
+
+def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
+               args: argparse.Namespace) -> int:
+    """:func:`run`'s work once ``out`` is made: the records judged (or read from the
+    store), then the table, the figure and the summary written into ``out``."""
     key = atlas_key(atlas, points)
     kept = stored_table(store_from_args(args), key)
     inputs = {"jaw": jaw, "points": args.points, "seed": args.seed, "ranges": bounds,
