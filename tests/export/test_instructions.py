@@ -231,3 +231,41 @@ def test_a_step_fits_what_the_array_uses_and_says_the_spares_stay_in_the_kit(boo
     assert fitted == len(project.plan.slots) == gauge_row.quantity - gauge_row.spares
     assert any(f"{gauge_row.spares} spare strain_gauge beyond the {fitted} fitted" in n
                for n in step["notes"])
+
+
+def test_a_step_picture_is_drawn_again_only_when_what_it_shows_changed(tmp_path):
+    """A build-book picture is kept by the parts it shows and their places: the same
+    picture asked again in another run reads the kept one (no part meshed); a changed
+    arm length draws it again."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from tactcad.catalogue.array_catalogue import array_instances, array_parts
+    from tactcad.export.instructions import step_picture_kept
+    from tactcad.store import Store, keeping_results
+
+    plan = load_project(HARDWARE / "ti_array_2x3" / "ti_array_2x3.toml").plan
+    meshed: list[str] = []
+
+    def mesh(spec):
+        meshed.append(spec.name)
+        vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+        return vertices, np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+
+    def picture(p, store_dir):
+        specs, instances = array_parts(p), array_instances(p)
+        new = {next(iter(specs))}
+        with keeping_results(Store(store_dir)):
+            return step_picture_kept(instances, specs, {}, new, set(), "Step 1: test", mesh)
+
+    first = picture(plan, tmp_path / "store")
+    assert first[0].startswith(b"\x89PNG") and meshed
+    meshed.clear()
+    assert picture(plan, tmp_path / "store") == first and not meshed
+    arms = [s.geometry.arm_length_mm for s in plan.slots]
+    arms[-1] += 0.5
+    changed = replace(plan, slots=tuple(replace(s, geometry=replace(s.geometry, arm_length_mm=a))
+                                        for s, a in zip(plan.slots, arms)))
+    picture(changed, tmp_path / "store")
+    assert meshed

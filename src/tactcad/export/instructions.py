@@ -14,7 +14,7 @@ import base64
 import html
 import json
 from pathlib import Path
-from typing import Callable, Collection, Mapping, Sequence
+from typing import BinaryIO, Callable, Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -139,7 +139,7 @@ def explode_offsets(meshes, instances, new: Collection[str], earlier: Collection
     return offsets
 
 
-def step_picture(meshes, instances, highlight, target: Path, title: str,
+def step_picture(meshes, instances, highlight, target: Path | BinaryIO, title: str,
                  offsets: Mapping[int, np.ndarray]) -> int:
     """Render a step's model: the ``highlight`` parts in :data:`HIGHLIGHT_RGB`
     moved by ``offsets`` (:func:`explode_offsets`, with the parts they carry),
@@ -273,22 +273,21 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
         for n, s in enumerate(steps):  # a part shared over steps (a nut) is placed at its first
             for part, _ in s.parts:
                 order.setdefault(part, n)
-        models = {}
+        models: dict = {}
         for n, s in enumerate(steps):
-            model = _step_model(s.scene, array, scene_of, mesh, models)
+            model = _step_model(s.scene, array, scene_of, models)
             if model is None:
                 continue
-            instances, meshes, axes = model
+            instances, specs, axes = model
             new = set(s.highlight) & {i.part for i in instances}
             if not new:
                 continue
             earlier = {i.part for i in instances if order.get(i.part, -1) < n}
             path = picture_name(n + 1, s.key)
-            offsets = explode_offsets(meshes, instances, new, earlier, axes)
-            step_picture(meshes, instances, new, staging / path, f"Step {n + 1}: {s.title}",
-                         offsets)
-            explode[s.key] = explode_record(instances, offsets)
-            pictures[s.key] = (staging / path).read_bytes()
+            png, explode[s.key] = step_picture_kept(
+                instances, specs, axes, new, earlier, f"Step {n + 1}: {s.title}", mesh)
+            write_bytes_atomic(staging / path, png)
+            pictures[s.key] = png
             picture_paths[s.key] = staging / path
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
                             "step": s.key})
@@ -316,9 +315,9 @@ def drawn_scene(step, assemblies) -> str:
     return next((a for a in names if want & {i.part for i in assemblies.get(a, ())}), step.scene)
 
 
-def _step_model(scene: str, array, scene_of, mesh, models: dict):
-    """(instances, part meshes, joint axes) of the model a step's picture shows,
-    made once per scene; None when it cannot be drawn here."""
+def _step_model(scene: str, array, scene_of, models: dict):
+    """(instances, their part specs by name, joint axes) of the model a step's picture
+    shows, made once per scene; None when it cannot be drawn here."""
     if scene not in models:
         axes: dict = {}
         if scene == "array" and array is not None:
@@ -328,8 +327,46 @@ def _step_model(scene: str, array, scene_of, mesh, models: dict):
         else:
             models[scene] = None
             return None
-        models[scene] = (list(instances), {i.part: mesh(specs[i.part]) for i in instances}, axes)
+        models[scene] = (list(instances), specs, axes)
     return models[scene]
+
+
+def step_picture_kept(instances, specs, axes, new: set[str], earlier: set[str], title: str,
+                      mesh) -> tuple[bytes, dict[str, list[float]]]:
+    """A step's picture (PNG bytes, :func:`step_picture`) and its explosion record
+    (:func:`explode_record`), or both as an earlier run kept them in the result store
+    (:func:`tactcad.store.kept_result`) when the picture shows the same parts in the
+    same places: a design change redraws only the steps that show a changed part.
+
+    Args:
+        instances: the model's placed instances (array instances or scene parts).
+        specs: part name -> part spec, for every part of ``instances``.
+        axes: instance name -> joint axis (the scene's), used by the explosion.
+        new, earlier: part names of the step's new parts and of those placed before it.
+        title: the picture's title.
+        mesh: part spec -> (vertices (n, 3) mm, triangles (m, 3)), called only on a miss.
+
+    Returns:
+        (the PNG's bytes, {instance name: [dx, dy, dz] mm}).
+    """
+    import io
+
+    from tactcad.export.jobs import RENDER_VERSION
+    from tactcad.export.render import instance_matrix
+    from tactcad.store import kept_result
+
+    def draw() -> tuple[bytes, dict[str, list[float]]]:
+        meshes = {i.part: mesh(specs[i.part]) for i in instances}
+        offsets = explode_offsets(meshes, instances, new, earlier, axes)
+        png = io.BytesIO()
+        step_picture(meshes, instances, new, png, title, offsets)
+        return png.getvalue(), explode_record(instances, offsets)
+
+    shown = [(i.name, i.part, np.round(instance_matrix(i), 9).tolist()) for i in instances]
+    parts = {name: specs[name] for name in sorted({i.part for i in instances})}
+    given_axes = {k: [float(x) for x in v] for k, v in axes.items()}
+    return kept_result("build-book picture", draw, RENDER_VERSION, title, shown, parts,
+                       sorted(new), sorted(earlier), given_axes)
 
 
 def instructions_jobs(run, before):
@@ -337,7 +374,7 @@ def instructions_jobs(run, before):
     from tactcad.export.job import Job
     from tactcad.store import content_key
 
-    from tactcad.export.jobs import RENDER_VERSION
+    from tactcad.export.jobs import RENDER_VERSION, keeping_run_results
 
     specs, inst = run.array
 
@@ -347,9 +384,10 @@ def instructions_jobs(run, before):
         def scene_of(name: str):
             scene, _ = build_scene(run.project, name, run.parts)
             return scene.instances, scene.parts(), scene.joint_axes()
-        return write_book(run.project, run.staging, run.log, run.inventory, run.array,
-                          run.parts.mesh, scene_of)
+        with keeping_run_results(run):
+            return write_book(run.project, run.staging, run.log, run.inventory, run.array,
+                              run.parts.mesh, scene_of)
     every_part = {**specs, **run.inventory[0]}  # the array's and every scene's parts
     return [Job("instructions", content_key("instructions", RENDER_VERSION, run.plan, run.inventory,
                                             run.project.rigs_sha256, list(specs.values()), inst),
-                make, tuple(every_part.values()))]
+                make, tuple(every_part.values()), worker=True)]

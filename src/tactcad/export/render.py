@@ -17,7 +17,7 @@ the same bytes with the same library versions.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Collection, Mapping, NamedTuple, Sequence
+from typing import BinaryIO, Collection, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
@@ -334,7 +334,8 @@ def _title_font() -> Path:
 
 
 def render_assembly_png(part_meshes: Mapping[str, tuple[np.ndarray, np.ndarray]], instances: Sequence,
-                        colors: Mapping[str, tuple[float, float, float]], target: str | Path,
+                        colors: Mapping[str, tuple[float, float, float]],
+                        target: str | Path | BinaryIO,
                         title: str = "", size_px: tuple[int, int] = (1600, 1000),
                         elev: float = 28.0, azim: float = -58.0, supersample: int = 2,
                         offsets: Mapping[int, np.ndarray] | None = None,

@@ -1,0 +1,32 @@
+"""The kernel's import leaves the libraries build123d loads but tactcad never
+calls into (``DEFERRED_IMPORTS``) unloaded until their first use."""
+
+import subprocess
+import sys
+
+PROBE = """
+import sys
+import tactcad.kernel.shapes as shapes
+shapes.box_at_origin(1.0, 1.0, 1.0)
+print("loaded before use:", "sympy.core" in sys.modules)
+import sympy
+print("value:", sympy.Rational(1, 3) * 3)
+print("loaded after use:", "sympy.core" in sys.modules, type(sys.modules["sympy"]).__name__)
+"""
+
+
+def test_sympy_loads_on_first_use_only():
+    out = subprocess.run([sys.executable, "-c", PROBE], capture_output=True, text=True,
+                         check=True).stdout
+    assert "loaded before use: False" in out
+    assert "value: 1" in out
+    assert "loaded after use: True module" in out
+
+
+def test_a_module_already_imported_is_left_alone():
+    probe = ("import sys, sympy\nreal = sys.modules['sympy']\nfrom tactcad.kernel import "
+             "defer_import\ndefer_import('sympy')\ndefer_import('no_such_module_here')\n"
+             "print(sys.modules['sympy'] is real, 'no_such_module_here' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.split() == ["True", "False"]
