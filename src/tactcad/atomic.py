@@ -6,6 +6,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import glob
+import hashlib
 import os
 import shutil
 import tempfile
@@ -549,3 +550,14 @@ def publish_dir(staging: Path, target: Path) -> None:
     os.rename(staging, target)
     note_changed(target)
     warn_old_export_left(aside, target, remove_tree(aside))
+
+
+def file_sha256(path: str | Path) -> str:
+    """sha256 (hex) of a file's bytes, read in chunks (a large STEP or GLB is not held whole).
+
+    Raises:
+        OSError: the file cannot be read.
+    """
+    with open(path, "rb") as fh:
+        return hashlib.file_digest(fh, "sha256").hexdigest()
+

@@ -14,7 +14,6 @@ when the manifest is made, so this module names no room; a new section is one
 
 from __future__ import annotations
 
-import hashlib
 import importlib
 import math
 from dataclasses import dataclass
@@ -24,6 +23,7 @@ from typing import Any
 
 from tactcad.version import VERSION
 from tactcad.design.array_plan import Plan
+from tactcad.atomic import file_sha256
 from tactcad.store import stack_versions
 
 
@@ -75,20 +75,12 @@ def manifest_sections() -> list[ManifestSection]:
 HEAD = ("design", "tactcad_version", "cad_stack", "units")
 
 
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for chunk in iter(lambda: fh.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
-
-
 def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:
     """The manifest: every file with its sha256, its part, the design hash, the stack."""
     files = []
     for r in records:
         p = out_dir / r["path"]
-        files.append({**r, "sha256": _sha256(p), "bytes": p.stat().st_size})
+        files.append({**r, "sha256": file_sha256(p), "bytes": p.stat().st_size})
     facts = design_facts(plan)
     return {**{k: facts[k] for k in HEAD}, "files": files,
             **{k: v for k, v in facts.items() if k not in HEAD}}

@@ -15,22 +15,16 @@ is one failing check (:func:`tactcad.checks.export_files.edited_results`);
 
 from __future__ import annotations
 
-import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
 from tactcad.version import VERSION
+from tactcad.atomic import file_sha256
 from tactcad.catalogue.files import MANIFEST
 from tactcad.design.array_plan import Plan
 from tactcad.store import stack_versions
-
-
-def file_sha256(path: Path) -> str:
-    """sha256 (hex) of a file's bytes."""
-    with open(path, "rb") as fh:
-        return hashlib.file_digest(fh, "sha256").hexdigest()
 
 
 @dataclass(frozen=True)

@@ -18,15 +18,12 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any, Mapping
 
+from tactcad.atomic import file_sha256
+
 #: The product the die's manifest and page name.
 PRODUCT_NAME = "silicon-die"
 #: The scene of the die on its carrier in the jaw's face pocket, as the page lists it.
 SCENE = "die_in_jaw"
-
-
-def file_sha256(path: Path) -> str:
-    """sha256 of a file's bytes (hex)."""
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
 def design_head(name: str, source: Mapping[str, Any] | None) -> dict:
