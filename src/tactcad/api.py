@@ -529,6 +529,58 @@ class Project:
         return crosstalk_record(self.plan, model)[0]
 
     @keyword_errors
+    def grasp(self, force_N: float | None = None, angle_deg: float | None = None,
+              kobj: float | None = None, coupling: str = "layer", profile: str | None = None,
+              pivot_mm: Sequence[float] | None = None, pin_to_tip_mm: float | None = None,
+              opening_deg: float | None = None, slab_thickness_mm: float | None = None,
+              lead_channel_mm: float | None = None, model: str = "closed-form") -> dict:
+        """The design's jaw closed on tissue, as ``tactcad grasp --json`` gives it: each
+        sensing unit's R and K_obj read as laid out and paired, every element's force
+        against its rating and overload limit, the leads through the shaft, ``warnings``
+        and ``passed`` (mm, N, N/mm, degrees; each argument as the command's option, None:
+        its default, whose reason the record's ``reasons`` give).
+
+        Args:
+            force_N, angle_deg: the grasp force (N, 0 < F <= 1000) or the closing angle
+                (degrees, 0 ... 90); at most one.
+            kobj: the tissue's true stiffness under one tip (N/mm).
+            coupling: ``layer``, ``half-space`` or ``none``. profile: ``wedge`` or ``slab``.
+            pivot_mm: the pin (X, Y) from the first tip (mm). pin_to_tip_mm, opening_deg,
+                slab_thickness_mm, lead_channel_mm: the jaw's sizes and the tissue's (mm,
+                degrees). model: ladder level of the elements' K.
+
+        Raises:
+            DesignError: a value out of its range or not taken by the grasp, named by its
+                keyword argument.
+            UnknownModelError: ``model`` is not a ladder level.
+        """
+        from tactcad.commands.options import grasp_option_error
+        from tactcad.errors import DesignError
+        from tactcad.in_use.grasp_experiment import COUPLINGS, DEFAULT_PROFILE, PROFILES
+        from tactcad.mechanics.ladder import UnknownModelError, models
+        from tactcad.studies.grasp_report import GRASP_NUMBERS, GraspAsked, grasp_record
+
+        given = {"force_N": force_N, "angle_deg": angle_deg, "kobj": kobj,
+                 "pivot_mm": pivot_mm, "pin_to_tip_mm": pin_to_tip_mm,
+                 "opening_deg": opening_deg, "slab_thickness_mm": slab_thickness_mm,
+                 "lead_channel_mm": lead_channel_mm}
+        checked = {k: _checked_number(option_name(k), v, *GRASP_NUMBERS[k], count=2
+                                      if k == "pivot_mm" else None)
+                   for k, v in given.items() if v is not None}
+        for option, value, allowed in (("--coupling", coupling, COUPLINGS),
+                                       ("--profile", profile or DEFAULT_PROFILE, PROFILES)):
+            if value not in allowed:
+                raise DesignError(option, value, " or ".join(allowed))
+        if model not in models():
+            raise UnknownModelError(model)
+        asked = GraspAsked(model=model, coupling=coupling, profile=profile or DEFAULT_PROFILE,
+                           **checked)
+        try:
+            return grasp_record(self.plan, asked)
+        except DesignError as exc:
+            raise grasp_option_error(exc, asked) from None
+
+    @keyword_errors
     def verify(self, model: str = "auto", progress: Progress | None = None,
                cache: str | Path | None | bool = True) -> "Verification":
         """The verification matrix of the design's requirements.
@@ -687,6 +739,39 @@ def element_number(number: Any, count: int, field: str = "number") -> int:
     if not 1 <= int(number) <= count:
         raise DesignError(field, number, allowed)
     return int(number)
+
+
+def _checked_number(option: str, value: Any, lo: float, hi: float, unit: str, lo_open: bool,
+                    count: int | None = None) -> Any:
+    """``value`` when it is a finite number in ``lo ... hi`` (``lo`` excluded when
+    ``lo_open``), or ``count`` of them (a tuple then), as the command's option of that
+    range takes it (:func:`tactcad.commands.options.number`).
+
+    Raises:
+        DesignError: a value out of range, not a number, or not ``count`` of them, named by
+            ``option`` (the API's refusal names the keyword argument).
+    """
+    import argparse
+    import math
+
+    from tactcad.commands.options import number
+    from tactcad.errors import DesignError
+
+    parse = number(lo, hi, unit, lo_open=lo_open)
+    allowed = (f"{count} numbers " if count else "a number ") + \
+        f"{'>' if lo_open else ''}{lo:g} ... {hi:g} ({unit})"
+    items = value if count else [value]
+    if count and (isinstance(value, (str, bytes)) or not hasattr(value, "__len__")
+                  or len(value) != count):
+        raise DesignError(option, value, allowed)
+    for x in items:
+        if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x):
+            raise DesignError(option, value, allowed)
+        try:
+            parse(repr(float(x)))
+        except argparse.ArgumentTypeError:
+            raise DesignError(option, value, allowed) from None
+    return tuple(float(x) for x in items) if count else float(value)
 
 
 def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProject":

@@ -1,4 +1,4 @@
-"""A metal array's read-out, thermal drift, K_obj budget and crosstalk from the Python API:
+"""A metal array's read-out, thermal drift, K_obj budget, crosstalk and grasp from the Python API:
 the same numbers as the commands' ``--json``, and refusals naming the keyword."""
 
 from __future__ import annotations
@@ -38,6 +38,9 @@ def without_seconds(record):
     ("thermal", "thermal", {"element": 2}, ("--element", "2")),
     ("budget", "budget", {"delta_T_K": 3.0}, ("--delta-T", "3")),
     ("crosstalk", "crosstalk", {}, ()),
+    ("grasp", "grasp", {}, ()),
+    ("grasp", "grasp", {"force_N": 0.2, "slab_thickness_mm": 4.0, "profile": "slab"},
+     ("--force-N", "0.2", "--slab-thickness-mm", "4", "--profile", "slab")),
 ])
 def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
     project = tactcad.load(str(DESIGN))
@@ -51,6 +54,12 @@ def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
     ("budget", {"delta_T_K": 500}, "delta_T_K"),
     ("thermal", {"element": 99}, "element"),
     ("thermal", {"element": "2"}, "element"),
+    ("grasp", {"force_N": 0.0}, "force_N"),
+    ("grasp", {"pivot_mm": [1.0]}, "pivot_mm"),
+    ("grasp", {"pivot_mm": (400.0, 0.0)}, "pivot_mm"),  # the pin past the last tip
+    ("grasp", {"pin_to_tip_mm": 1.5}, "pin_to_tip_mm"),  # short of the tips
+    ("grasp", {"force_N": 0.1, "angle_deg": 3.0}, "force_N"),
+    ("grasp", {"coupling": "glue"}, "coupling"),
 ])
 def test_the_apis_reports_refuse_naming_the_keyword(method, kwargs, named):
     project = tactcad.load(str(DESIGN))
@@ -67,3 +76,11 @@ def test_the_apis_crosstalk_refuses_an_unknown_level_naming_the_levels():
     assert "'no-such-level'" in str(caught.value)
     assert all(level in str(caught.value) for level in crosstalk_models())
 
+
+
+def test_a_pin_past_the_last_tip_is_refused_naming_the_pin():
+    """The jaw's length follows from a given pin: a pin past the last tip is the pin's
+    error, not the length's the user never gave."""
+    r = run_cli("grasp", "--design", str(DESIGN), "--pivot-mm", "400", "0")
+    assert r.returncode == 2
+    assert "--pivot-mm" in r.stderr and "--pin-to-tip-mm" not in r.stderr

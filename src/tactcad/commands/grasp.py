@@ -14,13 +14,20 @@ from tactcad.design.readout_section import LEAD_WIRE
 
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM,
-                                             DEFAULT_PROFILE, DEFAULT_TISSUE_BASE,
-                                             LINEAR_TISSUE_STRAIN)
+                                             DEFAULT_PROFILE, LINEAR_TISSUE_STRAIN)
+from tactcad.studies.grasp_report import DEFAULT_LEAD_CHANNEL_MM
 
-#: Defaults, each stated where it is used (mm; the jaw's in in_use.grasp_experiment).
-DEFAULT_LEAD_CHANNEL_MM = 3.0
 #: The grasp's fields and the options that set them (an error names the option).
 OPTION_OF = GRASP_OPTION_OF
+
+
+def ranged(name: str):
+    """The argparse type of a grasp number: its range as the API takes it
+    (:data:`tactcad.studies.grasp_report.GRASP_NUMBERS`)."""
+    from tactcad.studies.grasp_report import GRASP_NUMBERS
+
+    lo, hi, unit, lo_open = GRASP_NUMBERS[name]
+    return number(lo, hi, unit, lo_open=lo_open)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -46,13 +53,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_design_arg(p)
     add_cache_args(p)
     how = p.add_mutually_exclusive_group()
-    how.add_argument("--angle-deg", type=number(0, 90, "degrees"), default=None,
+    how.add_argument("--angle-deg", type=ranged("angle_deg"), default=None,
                      help="the jaw's closing angle above the opposing jaw (degrees)")
-    how.add_argument("--force-N", dest="force_N", type=number(0, 1000, "N", lo_open=True),
+    how.add_argument("--force-N", dest="force_N", type=ranged("force_N"),
                      default=None, help="the grasp force the tips put on the tissue (N; "
                                         "default half the rated full-scale force on every "
                                         "element)")
-    p.add_argument("--slab-thickness-mm", type=number(0, 100, "mm", lo_open=True),
+    p.add_argument("--slab-thickness-mm", type=ranged("slab_thickness_mm"),
                    default=None,
                    help="the tissue's thickness (mm; default the design's [tissue_slab] with "
                         f"its [grasper_jaw], else {DEFAULT_SLAB_MM:g} mm, assumed: give "
@@ -64,16 +71,16 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "near the pin first (a hinged jaw "
                         "reaches the far tips only once the near ones are on their stops; "
                         "default %(default)s)")
-    p.add_argument("--kobj", type=number(0, 1e4, "N/mm", lo_open=True), default=None,
+    p.add_argument("--kobj", type=ranged("kobj"), default=None,
                    help="the tissue's true local stiffness under one tip (N/mm; default the "
                         "geometric mean of the requirements' K_obj range)")
-    p.add_argument("--pivot-mm", type=number(-500, 500, "mm"), nargs=2, metavar=("X", "Y"),
+    p.add_argument("--pivot-mm", type=ranged("pivot_mm"), nargs=2, metavar=("X", "Y"),
                    default=None,
                    help="the pin in the insert's frame (mm): X along the rows, Y across them, "
                         "from the first element's tip centre (default the design's "
                         f"[grasper_jaw], else -{DEFAULT_PIVOT_BEHIND_MM:g} 0: "
                         f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip)")
-    p.add_argument("--pin-to-tip-mm", type=number(1, 200, "mm"), default=None,
+    p.add_argument("--pin-to-tip-mm", type=ranged("pin_to_tip_mm"), default=None,
                    help="the jaw from its pin to its tip (mm; default the design's "
                         "[grasper_jaw], "
                         f"else the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm)")
@@ -83,7 +90,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                                           "jaw_length_mm is the jaw's own "
                                                           "length"),
                    default=None, help=argparse.SUPPRESS)
-    p.add_argument("--opening-deg", type=number(0, 90, "degrees", lo_open=True),
+    p.add_argument("--opening-deg", type=ranged("opening_deg"),
                    default=None,
                    help="the jaw's full opening (degrees; default the design's [grasper_jaw], "
                         f"else {DEFAULT_OPENING_DEG:g}, assumed)")
@@ -93,7 +100,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "unless it says), a half-space, or none (eq. 1; default %(default)s)")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the elements' K (default closed-form)")
-    p.add_argument("--lead-channel-mm", type=number(0, 50, "mm", lo_open=True),
+    p.add_argument("--lead-channel-mm", type=ranged("lead_channel_mm"),
                    default=None,
                    help="the shaft's lead channel diameter (mm; default the bore of the "
                         "design's [grasper_shaft] when it states its grasper, else "
@@ -139,147 +146,33 @@ def design_plan_from_args(args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.design.grasper_in_use import stated_grasper
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import (default_jaw, grasp, kobj_range_warning,
-                                                 overload_warning, overloaded_sites,
-                                                 result_with_kobj_range, tissue_base_of)
-    from tactcad.in_use.shaft_leads import leads_check
-    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
-    from tactcad.mechanics.readout_chain import readout_chain, row_units
-    from tactcad.studies.verification import requirements_of
+    from tactcad.studies.grasp_report import grasp_record
     from tactcad.commands import product_view
 
     shown = product_view("grasp", args)  # a silicon die's design: the grasp in its jaw
     if shown is not None:
         return shown
     plan = design_plan_from_args(args)
-    req = requirements_of(plan)
-    rated = float(req.full_scale_force_N)
-    lo, hi = req.kobj_range_N_per_mm
-    k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
-    asked = args.angle_deg is not None or args.force_N is not None
-    force = args.force_N if asked else round(0.5 * rated * len(plan.slots), 12)
-    force_why = ("--force-N" if args.force_N is not None else "--angle-deg"
-                 if args.angle_deg is not None else
-                 f"half the rated {rated:g} N on each of {len(plan.slots)} elements")
-    k = ladder_stiffness_by_element(plan, args.model)
-    overload = overload_limits_of(plan)
-    by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
-    units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     try:
-        stated = stated_grasper(plan) is not None
-        unused = "grasper_jaw" in plan.raw and not stated
-        jaw = default_jaw(plan, args.pivot_mm, args.pin_to_tip_mm, args.opening_deg,
-                          args.slab_thickness_mm)
-        base = tissue_base_of(plan)
-        try:
-            result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=args.angle_deg,
-                           force_N=force, coupling=args.coupling, profile=args.profile,
-                           overload_N=overload, tissue_base=base)
-        except DesignError as exc:
-            if asked or exc.field != "force_N":
-                raise
-            # the default force outside what the tissue takes: below it with the jaw fully
-            # open (the grasp the jaw cannot make lighter), or above it closed flat (a
-            # tissue too thin or soft for it)
-            result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=jaw.opening_angle_deg,
-                           coupling=args.coupling, profile=args.profile, overload_N=overload,
-                           tissue_base=base)
-            tissue = f"{jaw.slab_thickness_mm:g} mm {args.profile}"
-            if result.as_laid_out.total_force_N > force:
-                force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
-                             f"than the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
-                             f"takes with the jaw open {jaw.opening_angle_deg:g} degrees")
-            else:
-                result = grasp(plan, jaw, k, units, k_obj, rated, angle_deg=0.0,
-                               coupling=args.coupling, profile=args.profile,
-                               overload_N=overload, tissue_base=base)
-                force_why = (f"the jaw closed flat: {force_why} ({force:g} N) is more than "
-                             f"the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
-                             f"takes with the jaw closed")
-        channel, channel_why = lead_channel_of(plan, args.lead_channel_mm)
-        leads = leads_check(len(plan.slots), channel,
-                            readout_chain(plan).lead_wires)
+        record = grasp_record(plan, asked_of(args))
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
-    result = result_with_kobj_range(result, (lo, hi))
-    warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)),
-                            *map(overload_warning, shown_layouts(result))) if w]
-    # an element past its overload limit in the design's own layout: the grasp the
-    # hardware makes damages it, a result that does not pass (exit 1, as a failed check)
-    passed = not overloaded_sites(result.as_laid_out.tips)
-    record = {**result.as_json(), "model": args.model, "leads": leads.as_json(),
-              "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings, "passed": passed,
-              "reasons": {
-                  "rated_force_N": req.reasons["full_scale_force_N"],
-                  "overload_limit_N": "each element's yield with the design's safety factor "
-                                      "or its gauge's largest strain, the smaller, at the "
-                                      "closed form (as verify's max_grasp_force_N reads it)",
-                  "K_obj": "--kobj" if args.kobj is not None else
-                  f"the geometric mean of the K_obj range {lo:g} ... {hi:g} N/mm",
-                  "force_N": force_why,
-                  "pivot": "--pivot-mm" if args.pivot_mm else
-                  "the design's [grasper_jaw]" if stated else
-                  f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows"
-                  + (f" (the design's [grasper_jaw] is not used: the {plan.construction} "
-                     "construction's envelope needs the CAD kernel)" if unused else ""),
-                  "pin_to_tip_mm": "--pin-to-tip-mm" if args.pin_to_tip_mm else
-                  "the design's [grasper_jaw]" if stated else
-                  f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm",
-                  "opening_angle_deg": "--opening-deg" if args.opening_deg else
-                  "the design's [grasper_jaw]" if stated else
-                  f"{DEFAULT_OPENING_DEG:g} degrees, assumed",
-                  "lead_channel_mm": channel_why,
-                  "slab_thickness_mm": "--slab-thickness-mm" if args.slab_thickness_mm else
-                  stated_table_words(plan, "tissue_slab") if stated else
-                  f"{DEFAULT_SLAB_MM:g} mm, assumed",
-                  "tissue_base": (stated_table_words(plan, "tissue_slab") if stated and
-                                  "base" in (plan.raw.get("tissue_slab") or {}) else
-                                  f"{DEFAULT_TISSUE_BASE}, assumed: tissue gripped on the jaw's "
-                                  "face does not slip on it")}}
     print(dumps(record, indent=1) if args.json else render(record))
-    return 0 if passed else 1
+    # an element past its overload limit in the design's own layout: exit 1, as a failed check
+    return 0 if record["passed"] else 1
 
 
-def shown_layouts(result) -> list:
-    """The layouts a grasp reports on their own: the design's, the paired one unless it is
-    the design's, and the one along the rows where there is one."""
-    own = result.layout["as_laid_out"]
-    return [result.as_laid_out, *([] if own else [result.paired]),
-            *([result.along_rows] if result.along_rows is not None else [])]
+def asked_of(args: argparse.Namespace):
+    """The grasp the command line asks for (:class:`tactcad.studies.grasp_report.GraspAsked`)."""
+    from tactcad.studies.grasp_report import GraspAsked
 
-
-def overload_limits_of(plan) -> dict[int, float]:
-    """Element number -> its overload limit (N) at the closed form
-    (:func:`tactcad.studies.verification.element_overload_limits_N`)."""
-    from tactcad.studies.verification import element_figures, element_overload_limits_N
-
-    return element_overload_limits_N(plan, element_figures(plan))
-
-
-def stated_table_words(plan, table: str) -> str:
-    """Where a grasper table's values come from: the design's own ``[table]``, or that
-    table's defaults for its stated jaw when the design leaves the table out."""
-    raw = getattr(plan, "raw", None) or {}
-    return (f"the design's [{table}]" if table in raw else
-            f"the [{table}] defaults (the design leaves the table out)")
-
-
-def lead_channel_of(plan, given_mm: float | None) -> tuple[float, str]:
-    """(the lead channel's diameter in mm, where it comes from): ``--lead-channel-mm``, the
-    bore of the design's shaft when the design states its grasper (as the ``grasper``
-    check reads it), else :data:`DEFAULT_LEAD_CHANNEL_MM`, assumed."""
-    if given_mm is not None:
-        return given_mm, "--lead-channel-mm"
-    raw = getattr(plan, "raw", None) or {}
-    if "grasper_jaw" in raw or "grasper_shaft" in raw:
-        from tactcad.partlib.grasper_jaw import design_table
-        from tactcad.partlib.grasper_shaft import shaft_part
-
-        bore = shaft_part(design_table(plan, "grasper_shaft")).geometry.bore_diameter_mm
-        return bore, "the bore of " + stated_table_words(plan, "grasper_shaft")
-    return DEFAULT_LEAD_CHANNEL_MM, f"{DEFAULT_LEAD_CHANNEL_MM:g} mm, assumed"
+    return GraspAsked(model=args.model, force_N=args.force_N, angle_deg=args.angle_deg,
+                      kobj=args.kobj, coupling=args.coupling, profile=args.profile,
+                      pivot_mm=tuple(args.pivot_mm) if args.pivot_mm else None,
+                      pin_to_tip_mm=args.pin_to_tip_mm, opening_deg=args.opening_deg,
+                      slab_thickness_mm=args.slab_thickness_mm,
+                      lead_channel_mm=args.lead_channel_mm)
 
 
 def _f(x, digits: int = 4) -> str:

@@ -66,3 +66,20 @@ def stated_grasper(plan: Any) -> StatedGrasper | None:
                          pin_to_tip_mm=jaw.length_mm - jaw.pin_x_mm,
                          opening_angle_deg=jaw.opening_angle_deg,
                          slab_thickness_mm=slab.thickness_mm, tissue_base=slab.base)
+
+
+def stated_shaft_bore_mm(plan: Any) -> float | None:
+    """The bore of the shaft the design states (``[grasper_shaft]``, or its defaults for a
+    stated ``[grasper_jaw]``), in mm: the channel its leads run through; None where the
+    design states no grasper.
+
+    Raises:
+        DesignErrors: the stated table refused (each refusal names its field).
+    """
+    from tactcad.partlib.grasper_jaw import design_table
+    from tactcad.partlib.grasper_shaft import shaft_part
+
+    raw = getattr(plan, "raw", None) or {}
+    if "grasper_jaw" not in raw and "grasper_shaft" not in raw:
+        return None
+    return shaft_part(design_table(plan, "grasper_shaft")).geometry.bore_diameter_mm

@@ -40,7 +40,7 @@ import numpy as np
 from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.in_use.jaw_kinematics import (OPENING_ANGLE_RANGE_DEG, JawGeometry, check_angle_deg,
-                                            indentation_mm)
+                                            PIN_TO_TIP_RANGE_MM, indentation_mm)
 from tactcad.in_use.kobj_budget import kobj_from_deflections
 from tactcad.in_use.tissue_coupling import TISSUE_POISSON_RATIO as TISSUE_COUPLING_POISSON_RATIO
 from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_frame,
@@ -865,6 +865,13 @@ def default_jaw(plan: Plan, pivot_mm: tuple[float, float] | None = None,
     pivot = pivot_mm or (-DEFAULT_PIVOT_BEHIND_MM, 0.0)
     last = max(u for u, _ in insert_frame(plan).values())
     length = pin_to_tip_mm or (last - pivot[0] + DEFAULT_JAW_BEYOND_MM)
+    lo, hi = PIN_TO_TIP_RANGE_MM
+    if not pin_to_tip_mm and not lo <= length <= hi:  # the pin given, the length derived
+        reach = last + DEFAULT_JAW_BEYOND_MM
+        raise DesignError("jaw.pivot_u_mm", pivot[0], f"{reach - hi:g} ... {reach - lo:g} mm "
+                          "along the rows", f"the jaw then reaches from its pin to "
+                          f"{DEFAULT_JAW_BEYOND_MM:g} mm beyond the last tip (u = {last:g} mm), "
+                          f"{lo:g} ... {hi:g} mm; or give the pin-to-tip length")
     return JawGeometry(pivot[0], pivot[1], length, opening_deg or DEFAULT_OPENING_DEG,
                        slab_mm or DEFAULT_SLAB_MM)
 

@@ -1,0 +1,212 @@
+"""A metal design's grasp as ``tactcad grasp --json`` prints it and
+:meth:`tactcad.api.Project.grasp` returns it: one computation for both.
+
+A pivoting jaw closes on tissue (:func:`tactcad.in_use.grasp_experiment.grasp`); each
+sensing unit's R and K_obj read, as laid out and paired, every element's force against its
+rating and overload limit, and the leads through the shaft. Units: mm, N, N/mm, degrees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from tactcad.errors import DesignError
+from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
+                                             DEFAULT_PIVOT_BEHIND_MM, DEFAULT_PROFILE,
+                                             DEFAULT_SLAB_MM, DEFAULT_TISSUE_BASE)
+
+#: The shaft's lead channel where the design states no grasper (mm, assumed).
+DEFAULT_LEAD_CHANNEL_MM = 3.0
+
+#: Each number a grasp is asked with: (low, high, unit, low end open); the command's
+#: options and the API's keyword arguments take the same ranges.
+GRASP_NUMBERS: dict[str, tuple[float, float, str, bool]] = {
+    "angle_deg": (0.0, 90.0, "degrees", False),
+    "force_N": (0.0, 1000.0, "N", True),
+    "slab_thickness_mm": (0.0, 100.0, "mm", True),
+    "kobj": (0.0, 1e4, "N/mm", True),
+    "pivot_mm": (-500.0, 500.0, "mm", False),
+    "pin_to_tip_mm": (1.0, 200.0, "mm", False),
+    "opening_deg": (0.0, 90.0, "degrees", True),
+    "lead_channel_mm": (0.0, 50.0, "mm", True),
+}
+
+
+@dataclass(frozen=True)
+class GraspAsked:
+    """What a grasp is asked with; None: the default each field's reason states.
+
+    Attributes:
+        model: ladder level of the elements' K.
+        force_N, angle_deg: the grasp force on the tissue (N) or the jaw's closing angle
+            (degrees), at most one of them.
+        kobj: the tissue's true local stiffness under one tip (N/mm).
+        coupling, profile: the tissue's coupling between the tips and its shape.
+        pivot_mm: the pin (X along the rows, Y across them; mm from the first tip).
+        pin_to_tip_mm, opening_deg, slab_thickness_mm, lead_channel_mm: the jaw from pin to
+            tip (mm), its full opening (degrees), the tissue's thickness (mm), the shaft's
+            lead channel (mm).
+    """
+
+    model: str = "closed-form"
+    force_N: float | None = None
+    angle_deg: float | None = None
+    kobj: float | None = None
+    coupling: str = "layer"
+    profile: str = DEFAULT_PROFILE
+    pivot_mm: tuple[float, float] | None = None
+    pin_to_tip_mm: float | None = None
+    opening_deg: float | None = None
+    slab_thickness_mm: float | None = None
+    lead_channel_mm: float | None = None
+
+
+def grasp_record(plan, asked: GraspAsked) -> dict:
+    """The grasp of a metal design, as ``tactcad grasp --json`` prints it.
+
+    Args:
+        plan: the design's plan (a stacked array or a comb).
+        asked: what the grasp is asked with (:class:`GraspAsked`).
+
+    Returns:
+        The jaw, each layout's tips and units (``as_laid_out``, ``paired``,
+        ``along_rows``), the leads, ``warnings`` (a K_obj outside the range, an element past
+        its overload limit), ``passed`` (False where the design's own layout overloads an
+        element) and ``reasons`` (where each default comes from).
+
+    Raises:
+        DesignError: a value the grasp cannot take, named by the grasp's field
+            (``force_N``, ``jaw.slab_thickness_mm`` ...:
+            :data:`tactcad.commands.options.GRASP_OPTION_OF` maps each to its option).
+    """
+    from tactcad.design.grasper_in_use import stated_grasper
+    from tactcad.in_use.grasp_experiment import (default_jaw, grasp, kobj_range_warning,
+                                                 overload_warning, overloaded_sites,
+                                                 result_with_kobj_range, tissue_base_of)
+    from tactcad.in_use.shaft_leads import leads_check
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.readout_chain import readout_chain, row_units
+    from tactcad.studies.verification import requirements_of
+
+    if asked.force_N is not None and asked.angle_deg is not None:
+        raise DesignError("force_N", asked.force_N, "a grasp force or a closing angle, not "
+                          f"both (the angle {asked.angle_deg:g} degrees is given too)")
+    req = requirements_of(plan)
+    rated = float(req.full_scale_force_N)
+    lo, hi = req.kobj_range_N_per_mm
+    k_obj = asked.kobj if asked.kobj is not None else math.sqrt(lo * hi)
+    given = asked.angle_deg is not None or asked.force_N is not None
+    force = asked.force_N if given else round(0.5 * rated * len(plan.slots), 12)
+    force_why = ("--force-N" if asked.force_N is not None else "--angle-deg"
+                 if asked.angle_deg is not None else
+                 f"half the rated {rated:g} N on each of {len(plan.slots)} elements")
+    k = ladder_stiffness_by_element(plan, asked.model)
+    overload = overload_limits_of(plan)
+    by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
+    units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
+    stated = stated_grasper(plan) is not None
+    unused = "grasper_jaw" in plan.raw and not stated
+    jaw = default_jaw(plan, asked.pivot_mm, asked.pin_to_tip_mm, asked.opening_deg,
+                      asked.slab_thickness_mm)
+    base = tissue_base_of(plan)
+
+    def closed(**how: Any):
+        return grasp(plan, jaw, k, units, k_obj, rated, coupling=asked.coupling,
+                     profile=asked.profile, overload_N=overload, tissue_base=base, **how)
+
+    try:
+        result = closed(angle_deg=asked.angle_deg, force_N=force)
+    except DesignError as exc:
+        if given or exc.field != "force_N":
+            raise
+        # the default force outside what the tissue takes: below it with the jaw fully
+        # open (the grasp the jaw cannot make lighter), or above it closed flat (a
+        # tissue too thin or soft for it)
+        result = closed(angle_deg=jaw.opening_angle_deg)
+        tissue = f"{jaw.slab_thickness_mm:g} mm {asked.profile}"
+        if result.as_laid_out.total_force_N > force:
+            force_why = (f"the jaw at its full opening: {force_why} ({force:g} N) is less "
+                         f"than the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
+                         f"takes with the jaw open {jaw.opening_angle_deg:g} degrees")
+        else:
+            result = closed(angle_deg=0.0)
+            force_why = (f"the jaw closed flat: {force_why} ({force:g} N) is more than "
+                         f"the {result.as_laid_out.total_force_N:.4g} N the {tissue} "
+                         f"takes with the jaw closed")
+    channel, channel_why = lead_channel_of(plan, asked.lead_channel_mm)
+    leads = leads_check(len(plan.slots), channel, readout_chain(plan).lead_wires)
+    result = result_with_kobj_range(result, (lo, hi))
+    warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)),
+                            *map(overload_warning, shown_layouts(result))) if w]
+    # an element past its overload limit in the design's own layout: the grasp the
+    # hardware makes damages it, a result that does not pass
+    passed = not overloaded_sites(result.as_laid_out.tips)
+    return {**result.as_json(), "model": asked.model, "leads": leads.as_json(),
+            "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings, "passed": passed,
+            "reasons": {
+                "rated_force_N": req.reasons["full_scale_force_N"],
+                "overload_limit_N": "each element's yield with the design's safety factor "
+                                    "or its gauge's largest strain, the smaller, at the "
+                                    "closed form (as verify's max_grasp_force_N reads it)",
+                "K_obj": "--kobj" if asked.kobj is not None else
+                f"the geometric mean of the K_obj range {lo:g} ... {hi:g} N/mm",
+                "force_N": force_why,
+                "pivot": "--pivot-mm" if asked.pivot_mm else
+                "the design's [grasper_jaw]" if stated else
+                f"{DEFAULT_PIVOT_BEHIND_MM:g} mm behind the first tip along the rows"
+                + (f" (the design's [grasper_jaw] is not used: the {plan.construction} "
+                   "construction's envelope needs the CAD kernel)" if unused else ""),
+                "pin_to_tip_mm": "--pin-to-tip-mm" if asked.pin_to_tip_mm else
+                "the design's [grasper_jaw]" if stated else
+                f"the last tip's radius + {DEFAULT_JAW_BEYOND_MM:g} mm",
+                "opening_angle_deg": "--opening-deg" if asked.opening_deg else
+                "the design's [grasper_jaw]" if stated else
+                f"{DEFAULT_OPENING_DEG:g} degrees, assumed",
+                "lead_channel_mm": channel_why,
+                "slab_thickness_mm": "--slab-thickness-mm" if asked.slab_thickness_mm else
+                stated_table_words(plan, "tissue_slab") if stated else
+                f"{DEFAULT_SLAB_MM:g} mm, assumed",
+                "tissue_base": (stated_table_words(plan, "tissue_slab") if stated and
+                                "base" in (plan.raw.get("tissue_slab") or {}) else
+                                f"{DEFAULT_TISSUE_BASE}, assumed: tissue gripped on the jaw's "
+                                "face does not slip on it")}}
+
+
+def shown_layouts(result) -> list:
+    """The layouts a grasp reports on their own: the design's, the paired one unless it is
+    the design's, and the one along the rows where there is one."""
+    own = result.layout["as_laid_out"]
+    return [result.as_laid_out, *([] if own else [result.paired]),
+            *([result.along_rows] if result.along_rows is not None else [])]
+
+
+def overload_limits_of(plan) -> dict[int, float]:
+    """Element number -> its overload limit (N) at the closed form
+    (:func:`tactcad.studies.verification.element_overload_limits_N`)."""
+    from tactcad.studies.verification import element_figures, element_overload_limits_N
+
+    return element_overload_limits_N(plan, element_figures(plan))
+
+
+def stated_table_words(plan, table: str) -> str:
+    """Where a grasper table's values come from: the design's own ``[table]``, or that
+    table's defaults for its stated jaw when the design leaves the table out."""
+    raw = getattr(plan, "raw", None) or {}
+    return (f"the design's [{table}]" if table in raw else
+            f"the [{table}] defaults (the design leaves the table out)")
+
+
+def lead_channel_of(plan, given_mm: float | None) -> tuple[float, str]:
+    """(the lead channel's diameter in mm, where it comes from): the one asked, the bore
+    of the design's shaft when the design states its grasper (as the ``grasper`` check
+    reads it), else :data:`DEFAULT_LEAD_CHANNEL_MM`, assumed."""
+    if given_mm is not None:
+        return given_mm, "--lead-channel-mm"
+    from tactcad.design.grasper_in_use import stated_shaft_bore_mm
+
+    bore = stated_shaft_bore_mm(plan)
+    if bore is not None:
+        return bore, "the bore of " + stated_table_words(plan, "grasper_shaft")
+    return DEFAULT_LEAD_CHANNEL_MM, f"{DEFAULT_LEAD_CHANNEL_MM:g} mm, assumed"
