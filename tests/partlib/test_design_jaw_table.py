@@ -313,3 +313,17 @@ def test_a_stated_pocket_depth_sets_the_combs_face_wall(comb_data):
                                                 grasper_jaw={"pocket_depth_mm": depth})))
         assert [e.field for e in err.value.errors] == ["grasper_jaw.pocket_depth_mm"]
         assert words in err.value.errors[0].allowed
+
+
+@pytest.mark.parametrize("change, field, words", [
+    # wider than the shaft: the width's refusal alone, no negative thickness offered
+    ({"width_mm": 9.0}, "grasper_jaw.width_mm", "<= 8 mm"),
+    # the opposing jaw alone leaves no thickness for this one beside a 7.9 mm width
+    ({"width_mm": 7.9, "opposing_jaw_mm": 1.3}, "grasper_jaw.opposing_jaw_mm", "< 1.261 mm"),
+])
+def test_a_jaw_no_thickness_can_pass_names_the_size_that_binds(change, field, words):
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**ROBOT_JAW, **change}, "robot.toml")
+    assert [e.field for e in err.value.errors] == [field]
+    assert words in err.value.errors[0].allowed
+    assert "-" not in err.value.errors[0].allowed.split("mm")[0]

@@ -257,7 +257,15 @@ def _check_closed(p: Problems, j: GrasperJawSection) -> None:
     bore (refused naming ``thickness_mm``, with the width and opposing jaw's keys)."""
     width, bore = jaw_width_mm(j), bore_mm(j)
     closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
-    if closed > bore + 1e-9:
+    if closed <= bore + 1e-9 or width > bore + 1e-9:  # too wide: the width's refusal says it
+        return
+    both = closed_thickness_limit_mm(bore, width)
+    if j.opposing_jaw_mm >= both - 1e-9:  # no jaw thickness fits beside this opposing jaw
+        p.add("grasper_jaw.opposing_jaw_mm", j.opposing_jaw_mm, f"< {fmt(round(both, 4))} mm",
+              f"the {fmt(width)} mm wide jaws closed pass the {shaft_words(j)} mm shaft only "
+              f"when both together are thinner than {fmt(round(both, 4))} mm; this jaw "
+              f"(thickness_mm) is {fmt(j.thickness_mm)} mm")
+    else:
         p.add("grasper_jaw.thickness_mm", j.thickness_mm,
               f"<= {fmt(round(closed_thickness_limit_mm(bore, width) - j.opposing_jaw_mm, 4))}"
               f" mm with the {fmt(j.opposing_jaw_mm)} mm opposing jaw (opposing_jaw_mm)",
