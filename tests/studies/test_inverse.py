@@ -597,3 +597,33 @@ def test_a_reason_the_base_carried_from_the_papers_design_keeps_its_words_not_th
                    "a.z": "1.5 mm lifts the face."}
     # the paper's design, as a base, is never named
     assert "macro_array" not in neutral_assumptions(base, "macro_array")["a.y"]
+
+
+def test_the_largest_feasible_force_printed_designs_when_pasted(tmp_path, monkeypatch, capsys):
+    """The largest force a design prints is rounded down, so pasting it designs (0.12058 N
+    was printed 0.1206 N, which the search then refused)."""
+    monkeypatch.chdir(tmp_path)
+
+    def design(force: str, out: str) -> tuple[int, str]:
+        code = main(["design", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                     "--full-scale-force", force, "--material", "Ti-6Al-4V-annealed",
+                     "--columns", "2", "--verify", "none", "--no-cache", "--out", out])
+        return code, capsys.readouterr().out
+
+    code, text = design("0.12", "first.toml")
+    assert code == 0, text
+    printed = re.search(r"largest feasible full-scale force for these stiffness targets: "
+                        r"([0-9.e+-]+) N", text).group(1)
+    code, text = design(printed, "pasted.toml")
+    assert code == 0, f"--full-scale-force {printed} refused"
+
+
+def test_a_change_that_meets_every_target_quotes_no_force_below_the_asked_one():
+    """A relaxing change that designs at the asked force does not quote the base layout's
+    lower force estimate beside "meets every target"."""
+    from tactcad.studies.design_alternatives import Alternative
+
+    met = Alternative("change", "material.grade", "17-4PH-H900", True, 0.0904)
+    assert met.words() == "material.grade = 17-4PH-H900: meets every target"
+    short = Alternative("change", "material.grade", "7075-T6", False, 0.0904)
+    assert short.words() == "material.grade = 7075-T6: largest full-scale force 0.0904 N"

@@ -1712,8 +1712,12 @@ def print_report(r: dict) -> None:
         print(line)
     for line in verification_lines(r.get("verify")):
         print(line)
+    from tactcad.vocabulary.rounding import round_down
+
+    # rounded down: the force printed is one to paste, so it must design
     print(f"largest feasible full-scale force for these stiffness targets: "
-          f"{r['max_full_scale_force_N']:.4g} N, bound by " + "; ".join(r["binding_limits"])
+          f"{round_down(r['max_full_scale_force_N'], 4):.4g} N, bound by "
+          + "; ".join(r["binding_limits"])
           + f" ({MAX_FORCE_BASIS})")
     print(f"wrote {shown_path(r['out'])}")
 

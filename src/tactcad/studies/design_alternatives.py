@@ -30,6 +30,7 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
+from tactcad.vocabulary.rounding import round_down, round_up
 from tactcad.errors import DesignError
 from tactcad.studies.inverse_design import (InverseDesign, InverseDesignError, Targets,
                                             design_from_tables, design_tables,
@@ -57,7 +58,8 @@ class Alternative:
         value: its value (N, a ratio, [LO, HI] N/mm, a grade or gauge name, mm).
         meets_targets: the inverse design succeeds with it.
         largest_force_N: the largest full-scale force at the asked ratio and
-            range with the change (0: the stiffness targets cannot be met).
+            range with the change (0: the stiffness targets cannot be met); for a change
+            that meets every target, at least the asked force (not searched beyond it).
     """
 
     kind: str
@@ -71,10 +73,11 @@ class Alternative:
                  else f"{self.value:.4g}" if isinstance(self.value, float) else str(self.value))
         if self.kind == "target":
             return f"{self.field} {value}"
+        if self.meets_targets:  # its force estimate is of the base layout, not the search's
+            return f"{self.field} = {value}: meets every target"
         force = (f"largest full-scale force {self.largest_force_N:.3g} N"
                  if self.largest_force_N > 0 else "the stiffness targets still out of reach")
-        return f"{self.field} = {value}: {force}" + (", meets every target"
-                                                    if self.meets_targets else "")
+        return f"{self.field} = {value}: {force}"
 
     def as_json(self) -> dict:
         return {"kind": self.kind, "field": self.field,
@@ -255,13 +258,13 @@ def largest_feasible_force(data: Mapping[str, Any], targets: Targets, correction
 
 
 def _round_down(x: float) -> float:
-    e = math.floor(math.log10(x)) - 2
-    return math.floor(x / 10 ** e) * 10 ** e if x > 0 else 0.0
+    """``x`` to three significant digits, down (a force or ratio to paste)."""
+    return round_down(x, 3)
 
 
 def _round_up(x: float) -> float:
-    e = math.floor(math.log10(x)) - 2
-    return math.ceil(x / 10 ** e - 1e-9) * 10 ** e if x > 0 else 0.0
+    """``x`` to three significant digits, up."""
+    return round_up(x, 3)
 
 
 def nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
@@ -357,6 +360,9 @@ def relaxing_changes(data: Mapping[str, Any], targets: Targets, correction=None,
     for alt, tables in best.values():  # the force each best change allows, by whole designs
         if not alt.meets_targets:
             alt = replace(alt, largest_force_N=largest_feasible_force(tables, targets, correction))
+        else:  # the whole design carries the asked force, whatever the base layout's estimate
+            alt = replace(alt, largest_force_N=max(alt.largest_force_N,
+                                                   targets.full_scale_force_N))
         if alt.meets_targets or alt.largest_force_N > better_than_N:
             out.append(alt)
     return sorted(out, key=_rank)

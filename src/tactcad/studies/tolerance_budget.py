@@ -24,6 +24,7 @@ import math
 from dataclasses import replace
 from typing import Callable
 
+from tactcad.vocabulary.rounding import round_down
 from tactcad.design.array_plan import Plan
 from tactcad.mechanics.correction import Correction, load_correction
 from tactcad.studies.tolerance_montecarlo import (MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED, ToleranceReport,
@@ -79,13 +80,6 @@ def mc_band(report: ToleranceReport) -> tuple[float, int]:
     return worst, element
 
 
-def _round_down(x: float) -> float:
-    if x <= 0:
-        return 0.0
-    e = math.floor(math.log10(x)) - 1
-    return float(f"{math.floor(x / 10 ** e + 1e-9) * 10 ** e:.6g}")
-
-
 def tighten(c: dict[str, float], tol: Tolerances, band: float, target: float) -> list[dict]:
     """Tolerances to tighten (largest contributor first) and their new values, so that the
     root-sum-square budget ``c`` scaled to the Monte Carlo ``band`` meets ``target``."""
@@ -104,7 +98,7 @@ def tighten(c: dict[str, float], tol: Tolerances, band: float, target: float) ->
         need = math.sqrt(max(goal * goal - others, 0.0)) / c[key] * now
         if need >= floor:
             out.append({"tolerance": f"tolerances.{key}", "from": now,
-                        "to": max(_round_down(min(need, now)), floor)})
+                        "to": max(round_down(min(need, now), 2), floor)})
             return out
         out.append({"tolerance": f"tolerances.{key}", "from": now, "to": floor,
                     "note": "to its process limit, not enough alone"})

@@ -42,6 +42,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from tactcad.vocabulary.rounding import clean as _clean, round_down, round_up
 from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
                                          stated_footprint, stated_number, stated_requirements)
@@ -96,26 +97,6 @@ class Requirements:
                 "stated": sorted(self.stated), "source": self.source,
                 **({} if self.footprint_mm is None else
                    {"footprint_mm": list(self.footprint_mm)})}
-
-
-def round_down(x: float, digits: int = 2) -> float:
-    """``x`` rounded down to ``digits`` significant digits (x > 0; any other x as it is)."""
-    if x <= 0 or not math.isfinite(x):
-        return x
-    e = math.floor(math.log10(x)) - digits + 1
-    return _clean(math.floor(x / 10 ** e + 1e-9) * 10 ** e)
-
-
-def round_up(x: float, digits: int = 2) -> float:
-    """``x`` rounded up to ``digits`` significant digits (x > 0; any other x as it is)."""
-    if x <= 0 or not math.isfinite(x):
-        return x
-    e = math.floor(math.log10(x)) - digits + 1
-    return _clean(math.ceil(x / 10 ** e - 1e-9) * 10 ** e)
-
-
-def _clean(x: float) -> float:
-    return float(f"{x:.6g}")
 
 
 # ---------------------------------------------------------------------------

@@ -56,6 +56,7 @@ from typing import Iterator, NamedTuple
 
 import numpy as np
 
+from tactcad.vocabulary.rounding import round_down
 from tactcad.errors import DesignError
 from tactcad.vocabulary.binding_limits import FOOTPRINT
 from tactcad.vocabulary.crystal import SILICON, SILICON_P_TYPE, in_plane_direction
@@ -1216,18 +1217,12 @@ def _lighter_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating,
     for _ in range(FRONTIER_BISECTIONS):
         middle = 0.5 * (low + high)
         low, high = (middle, high) if holds(middle) else (low, middle)
-    paste = _round_down_3(low)
+    paste = round_down(low, 3)
     return paste if holds(paste) else None
 
 
 #: Bisections of the rating's frontier: 40 halve its bracket (5 % wide) to 1e-13.
 FRONTIER_BISECTIONS = 40
-
-
-def _round_down_3(value: float) -> float:
-    """``value`` rounded down to three significant digits (within 1 % of it, below)."""
-    exponent = math.floor(math.log10(value)) - 2
-    return float(f"{math.floor(value / 10 ** exponent) * 10 ** exponent:.3g}")
 
 
 #: Whether a refused rating's refusal pastes the lighter rating that designs (a bisection
