@@ -667,7 +667,7 @@ class Project:
 
         from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
         from tactcad.export.reuse import reuse_state
-        from tactcad.export.run import export, export_scenes
+        from tactcad.export.run import check_out_dir, export, export_scenes
         from tactcad.export.selection import with_progress
         from tactcad.store import keeping_results
 
@@ -682,6 +682,8 @@ class Project:
         self._report = report
         to_run = groups_to_run(scenes)
         context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)
+        if out is not None and reuse_state(self.plan, Path(out)).refusal is not None:
+            check_out_dir(out)  # a folder no export can be written to: refused before any solve
         # what reads the design alone (the verification matrix) runs before any export
         with keeping_results(_store(cache)):
             run_groups([g for g in to_run if not g.on_export], context, done)

@@ -345,3 +345,18 @@ def test_option_names_in_a_refusals_words_become_keyword_arguments():
     assert type(path) is ExportPathError and str(path) == "out=a/b.toml: a file"
     other = DesignError("--design", "x", "a file")  # no keyword of the call: left as it is
     assert with_keyword_names(other, ["out"]) is other
+
+
+def test_check_refuses_an_out_no_export_can_be_written_to_before_solving(tmp_path, monkeypatch):
+    """A check whose --out cannot take an export is refused before its requirements are
+    decided (a cold store's fem3d decision took 90 s before the refusal)."""
+    import tactcad.checks.groups as groups
+    from tactcad.errors import ExportPathError
+
+    ran: list[str] = []
+    monkeypatch.setattr(groups, "run_groups", lambda *args, **kwargs: ran.append("groups"))
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder", encoding="utf-8")
+    with pytest.raises(ExportPathError):
+        tactcad.load(EXAMPLE_DESIGN).check(out=blocker / "x", cache=False)
+    assert ran == []
