@@ -103,19 +103,22 @@ def test_the_face_strains_say_where_and_whether_as_cut(printed):
 
 
 @pytest.fixture(scope="module")
-def printed_fem2d() -> dict:
+def printed_fem2d(tmp_path_factory) -> dict:
     """The Ti array's figures at fem2d: ``readout``, ``strength`` and ``thermal`` of every
-    element, ``stiffness`` of one element of each distinct part (a few seconds)."""
-    readout = _json("readout", "--design", TI, "--model", "fem2d", "--no-cache")
+    element, ``stiffness`` of one element of each distinct part. The commands share one
+    store, as a project's do: a quantity two of them name is solved once and read by both
+    (a command that computed another quantity would key it apart and solve it itself)."""
+    store = str(tmp_path_factory.mktemp("one-name-store"))
+    readout = _json("readout", "--design", TI, "--model", "fem2d", "--cache", store)
     first_of_part = {}
     for r in readout["elements"]:
         first_of_part.setdefault(r["part"], r["element"])
     numbers = sorted(first_of_part.values())
     return {"readout": readout,
-            "strength": _json("strength", "--design", TI, "--model", "fem2d", "--no-cache"),
-            "thermal": _json("thermal", "--design", TI, "--model", "fem2d", "--no-cache"),
+            "strength": _json("strength", "--design", TI, "--model", "fem2d", "--cache", store),
+            "thermal": _json("thermal", "--design", TI, "--model", "fem2d", "--cache", store),
             "stiffness": {n: _json("stiffness", "--design", TI, "--element", n, "--model",
-                                   "fem2d", "--no-cache") for n in numbers}}
+                                   "fem2d", "--cache", store) for n in numbers}}
 
 
 def test_the_grid_strain_is_one_figure_at_fem2d(printed_fem2d):
