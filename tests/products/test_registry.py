@@ -25,9 +25,10 @@ def test_the_shipped_products_and_their_files():
     assert product_of(HARDWARE / "macro_array" / "macro_array.toml").is_default
     die = product_of(HARDWARE / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml")
     assert die.name == "silicon-die" and not die.is_default
-    for command in ("strength", "stiffness", "verify", "budget", "readout", "modal"):
+    for command in ("strength", "stiffness", "verify", "budget", "readout", "modal",
+                    "tolerance"):
         assert callable(die.view(command)), command
-    assert die.view("tolerance") is None
+    assert die.view("evaluate") is None
     assert callable(die.hook("export")) and callable(die.hook("check"))
 
 
@@ -43,11 +44,12 @@ def test_a_product_without_a_hook_or_a_name_is_refused_by_name():
 def test_a_command_a_product_has_no_answer_to_names_those_it_has(tmp_path):
     source = HARDWARE / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml"
     (tmp_path / source.name).write_bytes(source.read_bytes())
-    r = run_cli("tolerance", "--json", cwd=tmp_path)
+    r = run_cli("evaluate", "--json", cwd=tmp_path)
     assert r.returncode == 2, r.stdout + r.stderr
     error = json.loads(r.stdout)["error"]
     assert error["field"] == "--design"
-    for command in ("strength", "stiffness", "export", "check", "tactcad die --design"):
+    for command in ("strength", "stiffness", "tolerance", "export", "check",
+                    "tactcad die --design"):
         assert command in error["message"], command
 
 

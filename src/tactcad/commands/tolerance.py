@@ -6,8 +6,8 @@ import argparse
 import dataclasses
 import json
 
-from tactcad.commands import add_design_arg, add_output_args, plan_from_args
-from tactcad.commands.options import count, number
+from tactcad.commands import add_design_arg, add_output_args, plan_from_args, product_view
+from tactcad.commands.options import count, keep_option_defaults, number
 from tactcad.studies.tolerance_montecarlo import (
     MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED, SAMPLES_RANGE)
 
@@ -33,7 +33,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "95 % interval. Also the web tolerance that keeps K within +/-5 % (for "
                     "the paper's design next to its measured spread of equal-arm elements), "
                     "whether the K band holds [requirements] k_tolerance_rel and which "
-                    "tolerance to tighten to what. Units: mm, N/mm.")
+                    "tolerance to tighten to what. On a silicon die's design file: the die's "
+                    "process tolerances (device layer thickness, cavity alignment) as its "
+                    "budget states them, each row's beam K by its closed form, each unit's "
+                    "coupled R and the K_obj it reads, and the spread against the budget's "
+                    "terms. Units: mm, N/mm (um for a die's features).")
     add_design_arg(p)
     p.add_argument("--samples", type=count(*SAMPLES_RANGE, "samples"),
                    default=MONTE_CARLO_SAMPLES,
@@ -50,8 +54,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="one reference element for every unit, one of the design's reference "
                         "elements (the nominally stiffest; default: each unit the nearest "
                         "one)")
-    p.add_argument("--distribution", choices=("normal", "uniform"), default="normal",
-                   help="normal with tolerance = 3 sigma (default) or uniform over +/-tolerance")
+    p.add_argument("--distribution", choices=("normal", "uniform"), default=None,
+                   help="normal with tolerance = 3 sigma or uniform over +/-tolerance "
+                        "(default: normal for an array; uniform for a silicon die, as its "
+                        "budget takes a +- bound)")
     p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
                    help="what-if: +/- notch radius instead of the design's "
                         "[tolerances] notch_radius_mm")
@@ -62,10 +68,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "youngs_modulus_rel")
     add_output_args(p, "print JSON")
     add_cluster_args(p)
+    keep_option_defaults(p)  # a die's design: its view refuses an array's options
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    shown = product_view("tolerance", args)  # a silicon die's design: its process tolerances
+    if shown is not None:
+        return shown
     import time
 
     from tactcad.studies.tolerance_montecarlo import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
@@ -73,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
     plan = plan_from_args(args)
     given = {"notch_radius_mm": args.notch_radius_tol, "arm_length_mm": args.arm_tol,
              "modulus_rel": args.modulus_tol}
-    tol = Tolerances.of_plan(plan, distribution=args.distribution,
+    tol = Tolerances.of_plan(plan, distribution=args.distribution or "normal",
                              **{k: v for k, v in given.items() if v is not None})
     t0 = time.perf_counter()
     from tactcad.design.requirements_section import cites_paper

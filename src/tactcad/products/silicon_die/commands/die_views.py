@@ -1,10 +1,11 @@
 """The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
-``thermal``, ``verify``, ``grasp``, ``crosstalk``, ``strength`` and ``stiffness`` print the
-die's own resonances, K_obj budget, piezoresistive read-out, its temperature terms, its
-verification matrix (:func:`die_verification`), the grasp in its jaw
+``thermal``, ``verify``, ``grasp``, ``crosstalk``, ``strength``, ``stiffness`` and
+``tolerance`` print the die's own resonances, K_obj budget, piezoresistive read-out, its
+temperature terms, its verification matrix (:func:`die_verification`), the grasp in its jaw
 (:mod:`tactcad.products.silicon_die.in_use.die_grasp`), the crosstalk through its handle and attach
 (:mod:`tactcad.products.silicon_die.mechanics.die_crosstalk`), each row's root stress against the strength of
-etched silicon and each row's K at the closed form or fem3d; the die product's registry
+etched silicon, each row's K at the closed form or fem3d, and the Monte Carlo of its process
+tolerances (:mod:`tactcad.products.silicon_die.studies.die_tolerance`); the die product's registry
 entry (:mod:`tactcad.products.silicon_die`) names them (``<command>_view``), and
 :func:`tactcad.commands.product_view` runs them,
 planned as the die command plans it and writing no file of theirs (the result store aside).
@@ -29,7 +30,8 @@ from tactcad.products.silicon_die.studies.die_verification import die_verificati
 DIE_OPTIONS: dict[str, frozenset] = {
     "grasp": frozenset({"angle_deg", "force_N", "slab_thickness_mm", "profile", "kobj",
                         "opening_deg", "coupling"}),
-    "strength": frozenset({"model"}), "stiffness": frozenset({"model"})}
+    "strength": frozenset({"model"}), "stiffness": frozenset({"model"}),
+    "tolerance": frozenset({"samples", "seed", "kobj", "distribution"})}
 
 
 def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) -> None:
@@ -420,6 +422,26 @@ def _stiffness(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     return {"design": str(design), **report}, lines
 
 
+def _tolerance(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    import time
+
+    from tactcad.in_use.grasp_experiment import kobj_range_warning
+    from tactcad.products.silicon_die.studies.die_tolerance import (DieTolerances, report_lines,
+                                                                    run_die_tolerance)
+
+    plan = _planned(design, args).plan
+    tol = DieTolerances.of_plan(plan, args.distribution or "uniform")
+    t0 = time.perf_counter()
+    report = run_die_tolerance(plan, args.samples, args.seed, tol, args.kobj)
+    wall = time.perf_counter() - t0
+    warnings = [w for w in (kobj_range_warning(k, plan.kobj_range_N_per_mm)
+                            for k in (args.kobj or ())) if w]
+    record = {"design": str(design), "die": plan.name, "source": "the die's process",
+              "K_obj_range_N_per_mm": list(plan.kobj_range_N_per_mm), "warnings": warnings,
+              **report.as_json()}
+    return record, [*report_lines(plan.name, report, wall), *warnings]
+
+
 def _viewed(command: str, view: Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]):
     """``view`` as the die's answer to the array command ``command`` (the die product's
     hook, :mod:`tactcad.products.silicon_die`): an option of the array's that means nothing
@@ -440,3 +462,4 @@ grasp_view = _viewed("grasp", _grasp)
 crosstalk_view = _viewed("crosstalk", _crosstalk)
 strength_view = _viewed("strength", _strength)
 stiffness_view = _viewed("stiffness", _stiffness)
+tolerance_view = _viewed("tolerance", _tolerance)
