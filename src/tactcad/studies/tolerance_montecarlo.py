@@ -361,8 +361,9 @@ def sensing_units(plan: Plan, k_nominal: np.ndarray,
     return units
 
 
-def _percentiles(x: np.ndarray) -> dict:
-    """mean, std and the 2.5/97.5 % percentiles of finite entries (JSON floats)."""
+def sample_statistics(x: np.ndarray) -> dict:
+    """mean, std and the 2.5/97.5 % percentiles of the finite entries of ``x`` (JSON floats;
+    each None where none is finite): a Monte Carlo's figures of one quantity."""
     x = x[np.isfinite(x)]
     if x.size == 0:
         return {"mean": None, "std": None, "p2_5": None, "p97_5": None}
@@ -489,9 +490,9 @@ def summarise(plan: Plan, chunks: Sequence[dict[str, np.ndarray]], tol: Toleranc
             rep = reported.value
             units.append({"measuring": m, "reference": r, "K_obj_true_N_per_mm": ko,
                           "R_nominal": deflection_ratio(km_nom, kr_nom, ko),
-                          "R": _percentiles(ratio.value),
-                          "K_obj_reported_N_per_mm": _percentiles(rep),
-                          "K_obj_error_rel": _percentiles((rep - ko) / ko),
+                          "R": sample_statistics(ratio.value),
+                          "K_obj_reported_N_per_mm": sample_statistics(rep),
+                          "K_obj_error_rel": sample_statistics((rep - ko) / ko),
                           "fraction_outside_eq3_domain": float(1.0 - np.mean(reported.valid))})
     webs = []
     for name, g in plan.distinct_elements.items():
@@ -521,7 +522,7 @@ def element_statistics(plan: Plan, k: np.ndarray, k_nominal: np.ndarray) -> list
     """
     elements = []
     for i, (slot, kn) in enumerate(zip(plan.slots, k_nominal)):
-        stats = _percentiles(k[:, i])
+        stats = sample_statistics(k[:, i])
         elements.append({"element": slot.number,
                          "arm_length_mm": plan.element(slot.number).geometry.arm_length_mm,
                          "K_nominal_N_per_mm": float(kn),

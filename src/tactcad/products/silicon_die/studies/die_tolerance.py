@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tactcad.studies.tolerance_montecarlo import sample_statistics
 from tactcad.errors import DesignError
 
 #: Drawn dies per chunk: the batched solves of a chunk stay a few tens of MB.
@@ -258,17 +259,6 @@ def check_kobj(plan, k_obj) -> list[float]:
     return [float(k) for k in k_obj]
 
 
-def _stats(x: np.ndarray) -> dict:
-    """mean, std and 2.5 / 97.5 % percentiles of the finite entries (JSON floats; None
-    when none is finite)."""
-    x = x[np.isfinite(x)]
-    if x.size == 0:
-        return {"mean": None, "std": None, "p2_5": None, "p97_5": None}
-    lo, hi = np.percentile(x, [2.5, 97.5])
-    return {"mean": float(x.mean()), "std": float(x.std(ddof=1)) if x.size > 1 else 0.0,
-            "p2_5": float(lo), "p97_5": float(hi)}
-
-
 @dataclass(frozen=True)
 class DieToleranceReport:
     """The die's tolerance Monte Carlo (N/mm, um).
@@ -295,7 +285,7 @@ class DieToleranceReport:
 
 
 def _row_record(role: str, beams: list[int], k: np.ndarray, k_nominal: float) -> dict:
-    stats = _stats(k)
+    stats = sample_statistics(k)
     return {"row": role, "beams": beams, "K_nominal_N_per_mm": k_nominal,
             "K_rel_std": stats["std"] / k_nominal,
             **{f"K_{key}_N_per_mm": v for key, v in stats.items()}}
@@ -305,9 +295,9 @@ def _unit_record(unit: tuple[int, int], k_obj: float, r_nominal: float, r: np.nd
                  read: np.ndarray) -> dict:
     from tactcad.in_use.tissue_coupling import unit_label
 
-    stats = _stats(read)
+    stats = sample_statistics(read)
     return {"unit": unit_label(unit), "measuring": unit[0], "reference": unit[1],
-            "K_obj_true_N_per_mm": k_obj, "R_nominal": r_nominal, "R": _stats(r),
+            "K_obj_true_N_per_mm": k_obj, "R_nominal": r_nominal, "R": sample_statistics(r),
             "K_obj_reported_N_per_mm": stats,
             "K_obj_rel_std": None if stats["std"] is None else stats["std"] / k_obj,
             "K_obj_mean_error_rel": None if stats["mean"] is None else stats["mean"] / k_obj - 1,
