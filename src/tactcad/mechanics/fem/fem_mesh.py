@@ -57,6 +57,8 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
+import tempfile
 from dataclasses import dataclass
 from typing import Iterator, NamedTuple, Sequence
 
@@ -245,6 +247,29 @@ def clip_chain(segments: Sequence[Segment], x_clamp: float) -> tuple[Segment, ..
 # ---------------------------------------------------------------------------
 # gmsh
 # ---------------------------------------------------------------------------
+def initialize_gmsh() -> None:
+    """Start gmsh as tactcad runs it: no configuration files read, no interrupt handler
+    of its own, this process's signal dispositions kept (gmsh leaves SIGPIPE, SIGTERM and
+    the fault signals at their defaults; a host process, the API, a watch session, a test
+    worker, keeps its own) and the user's home left untouched: the GUI toolkit linked into
+    gmsh writes its preferences (``~/.fltk/fltk.org/fltk.prefs``) under ``$HOME`` as gmsh
+    starts, so ``$HOME`` names a temporary folder, removed after, for that moment.
+    """
+    import gmsh
+
+    home = os.environ.get("HOME")
+    with tempfile.TemporaryDirectory(prefix="tactcad-gmsh-") as scratch, \
+            signal_dispositions_kept():
+        os.environ["HOME"] = scratch
+        try:
+            gmsh.initialize(readConfigFiles=False, interruptible=False)
+        finally:
+            if home is None:
+                os.environ.pop("HOME", None)
+            else:
+                os.environ["HOME"] = home
+
+
 @contextlib.contextmanager
 def gmsh_session(name: str) -> Iterator[object]:
     """A quiet gmsh model; gmsh is initialised (and finalised) here unless a
@@ -253,10 +278,7 @@ def gmsh_session(name: str) -> Iterator[object]:
 
     own = not gmsh.isInitialized()
     if own:
-        # gmsh leaves SIGPIPE, SIGTERM and the fault signals at their defaults:
-        # a host process (the API, a watch session, a test worker) keeps its own
-        with signal_dispositions_kept():
-            gmsh.initialize(readConfigFiles=False, interruptible=False)
+        initialize_gmsh()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)

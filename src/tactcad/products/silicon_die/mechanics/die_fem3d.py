@@ -342,6 +342,8 @@ def _root_mesh(plan, beam, level: int):
     import meshio
     from skfem.io.meshio import from_meshio
 
+    from tactcad.mechanics.fem.fem_mesh import initialize_gmsh
+
     from tactcad.products.silicon_die.mechanics.die_dynamics import FRAME_MARGIN_OVER_T
 
     t, w = beam.thickness_um * 1e-3, beam.width_um * 1e-3
@@ -354,7 +356,7 @@ def _root_mesh(plan, beam, level: int):
     beam_edge = ROOT_BEAM_EDGE_OVER_T * t
     started = gmsh.isInitialized()
     if not started:
-        gmsh.initialize(readConfigFiles=False)
+        initialize_gmsh()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.NumThreads", 1)
