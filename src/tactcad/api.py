@@ -911,13 +911,18 @@ class DieProject:
         """
         from tactcad.errors import DesignError
         from tactcad.in_use.grasp_experiment import DEFAULT_PROFILE
+        from tactcad.studies.grasp_report import GRASP_NUMBERS
 
         if force_N is not None and angle_deg is not None:  # the command's options exclude it
             raise DesignError("force_N / angle_deg", (force_N, angle_deg), "one of them, or "
                               "neither (the default grasp force)")
-        return self._report("grasp", force_N=force_N, angle_deg=angle_deg, kobj=kobj,
-                            coupling=coupling, profile=profile or DEFAULT_PROFILE,
-                            slab_thickness_mm=slab_thickness_mm, opening_deg=opening_deg)
+        given = {"force_N": force_N, "angle_deg": angle_deg, "kobj": kobj,
+                 "slab_thickness_mm": slab_thickness_mm, "opening_deg": opening_deg}
+        # the ranges the command's options take (a die's grasp reads the same options)
+        checked = {k: None if v is None else _checked_number(option_name(k), v, *GRASP_NUMBERS[k])
+                   for k, v in given.items()}
+        return self._report("grasp", coupling=coupling, profile=profile or DEFAULT_PROFILE,
+                            **checked)
 
     @property
     def design_hash(self) -> str:

@@ -57,7 +57,10 @@ def test_a_die_projects_refusals_name_its_keyword_arguments(die_folder):
 
     die = tactcad.load(die_folder / EXAMPLE.name)
     for kwargs, field in ((dict(kobj=-1), "kobj"), (dict(force_N=1e3), "force_N"),
-                          (dict(force_N=1.0, angle_deg=3.0), "force_N / angle_deg")):
+                          (dict(force_N=1.0, angle_deg=3.0), "force_N / angle_deg"),
+                          # the command's own ranges and types: no grasp of nothing, no text
+                          (dict(force_N=0), "force_N"), (dict(force_N="1"), "force_N"),
+                          (dict(opening_deg=95.0), "opening_deg")):
         with pytest.raises(DesignError) as err:
             die.grasp(**kwargs)
         assert err.value.field == field and "--" not in str(err.value), str(err.value)
