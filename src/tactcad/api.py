@@ -1069,7 +1069,8 @@ class Element:
             :class:`~tactcad.mechanics.stiffness_result.StiffnessResult`: K (N/mm), face
             strain per newton (1/N), relative error estimate, wall time (s) and, for an
             element carrying a gauge, the grid strain per newton at ``model`` (1/N,
-            magnitude; ``tactcad stiffness``'s and ``readout``'s ``grid_strain_per_N``).
+            signed, negative where the grid shortens; ``tactcad stiffness``'s, ``readout``'s
+            and ``thermal``'s ``grid_strain_per_N``).
 
         Raises:
             UnknownModelError: ``model`` is not a ladder level.
@@ -1084,7 +1085,7 @@ class Element:
         from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
 
         read = grid_strain_per_N(self.geometry, plan.material, readout_chain(plan), model)
-        return replace(result, grid_strain_per_N=abs(float(read["grid"])))
+        return replace(result, grid_strain_per_N=float(read["grid"]))
 
     @keyword_errors
     def modes(self, model: str = "closed-form", modes: int = 3,

@@ -60,8 +60,9 @@ def test_the_grid_strain_is_one_figure_in_stiffness_readout_and_strength(printed
     readout = {r["element"]: r for r in printed["readout"]["elements"]}
     for rec in printed["strength"]["elements"]:
         n = rec["element"]
-        grid = abs(readout[n]["grid_strain_per_N"])
+        grid = readout[n]["grid_strain_per_N"]  # signed in both: one key, one quantity
         assert printed["stiffness"][n]["grid_strain_per_N"] == pytest.approx(grid, rel=1e-12)
+        grid = abs(grid)  # strength's figure at the rating is a magnitude
         # strength prints it at the rating: grid_strain_per_N x the full-scale force
         assert rec["gauge_strain_at_full_scale"] / rec["full_scale_force_N"] == \
             pytest.approx(grid, rel=1e-12)
@@ -124,8 +125,8 @@ def printed_fem2d(tmp_path_factory) -> dict:
 def test_the_grid_strain_is_one_figure_at_fem2d(printed_fem2d):
     """At fem2d the grid strain is the grid's plane over the grid's area (the line the plane
     solve gives times the fem3d-fitted width factor) in every command, ``stiffness`` too."""
-    readout = {r["element"]: abs(r["grid_strain_per_N"])
-               for r in printed_fem2d["readout"]["elements"]}
+    signed = {r["element"]: r["grid_strain_per_N"] for r in printed_fem2d["readout"]["elements"]}
+    readout = {n: abs(e) for n, e in signed.items()}
     thermal = {r["element"]: abs(r["grid_strain_per_N"])
                for r in printed_fem2d["thermal"]["elements"]}
     strength = {r["element"]: r["gauge_strain_at_full_scale"] / r["full_scale_force_N"]
@@ -135,7 +136,7 @@ def test_the_grid_strain_is_one_figure_at_fem2d(printed_fem2d):
     assert {r["model"] for r in printed_fem2d["strength"]["elements"]} == {"fem2d"}
     for n, s in printed_fem2d["stiffness"].items():
         assert s["model"] == "fem2d"
-        assert s["grid_strain_per_N"] == pytest.approx(readout[n], rel=1e-12)
+        assert s["grid_strain_per_N"] == pytest.approx(signed[n], rel=1e-12)
         assert thermal[n] == pytest.approx(readout[n], rel=1e-12)
         assert strength[n] == pytest.approx(readout[n], rel=1e-12)
 

@@ -250,14 +250,15 @@ GRASP_OPTION_OF = {"force_N": "--force-N", "angle_deg": "--angle-deg",
                    "jaw.slab_thickness_mm": "--slab-thickness-mm", "k_obj_N_per_mm": "--kobj",
                    "channel_diameter_mm": "--lead-channel-mm"}
 
-def grasp_option_error(exc, args: argparse.Namespace):
+def grasp_option_error(exc, args: Any):
     """A grasp error re-worded to name the command-line option that set its field
     (:data:`GRASP_OPTION_OF`); an option of several values (``--pivot-mm X Y``) is said with
     all of them as given, not with the one coordinate its field holds.
 
     Args:
         exc: the :class:`~tactcad.errors.DesignError` of a grasp field.
-        args: the command line, whose option gave the value.
+        args: the command line whose option gave the value, or anything with the same
+            attributes (the API's :class:`~tactcad.studies.grasp_report.GraspAsked`).
 
     Returns:
         The error naming the option, or ``exc`` when no option sets its field.

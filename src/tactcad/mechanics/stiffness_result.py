@@ -27,7 +27,8 @@ class StiffnessResult:
             estimate for FEM, fitted residual for corrected closed forms).
         wall_time_s: wall-clock time of the evaluation (s).
         grid_strain_per_N: the mean strain on the grid's plane (the layer's top) over
-            the grid per newton (1/N, magnitude; :func:`tactcad.mechanics.readout_chain.
+            the grid per newton (1/N, signed as every command prints it: negative where a
+            tip force shortens the grid; :func:`tactcad.mechanics.readout_chain.
             grid_strain_per_N`'s ``"grid"``) of an element carrying a gauge: fem2d and
             fem3d read it with the layer meshed; at the closed form and the beam level the
             estimator gives None and :meth:`tactcad.api.Element.stiffness` the read-out's.

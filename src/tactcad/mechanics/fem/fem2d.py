@@ -918,7 +918,7 @@ def estimate_fem2d(g: ElementGeometry, material: Material, *, element: int | Non
         face_strain_per_N=abs(fin.gauge_strain) / force_N,
         error_estimate_rel=conv.stiffness.error_rel + plane_model_error(g, material, plane),
         wall_time_s=conv.wall_time_s,
-        grid_strain_per_N=None if g.gauge is None else abs(grid_plane_strain_per_N(
+        grid_strain_per_N=None if g.gauge is None else float(grid_plane_strain_per_N(
             conv, g, material, g.gauge.grid_width_mm, ratio)["grid"]))
 
 

@@ -320,4 +320,4 @@ def estimate_fem3d(g: ElementGeometry, material: Material, *, element: int | Non
         face_strain_per_N=abs(fin.gauge_strain) / force_N,
         error_estimate_rel=conv.stiffness.error_rel, wall_time_s=conv.wall_time_s,
         grid_strain_per_N=None if g.gauge is None else
-        abs(grid_area_strains_per_N(conv, g, g.gauge.grid_width_mm)[-1]))
+        float(grid_area_strains_per_N(conv, g, g.gauge.grid_width_mm)[-1]))
