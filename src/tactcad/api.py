@@ -581,6 +581,54 @@ class Project:
             raise grasp_option_error(exc, asked) from None
 
     @keyword_errors
+    def tolerance(self, samples: int | None = None, seed: int | None = None,
+                  kobj: Sequence[float] | None = None, reference: int | None = None,
+                  distribution: str | None = None, notch_radius_tol: float | None = None,
+                  arm_tol: float | None = None, modulus_tol: float | None = None) -> dict:
+        """The Monte Carlo of the design's manufacturing tolerances, as ``tactcad tolerance
+        --json`` gives it: K per element, R and the reported K_obj per sensing unit (mean,
+        std, 95 % interval), the web tolerance for a +/-5 % K band, the tolerances used and
+        whether the K band holds ``[requirements] k_tolerance_rel`` (mm, N/mm; one
+        computation with the command, :func:`tactcad.studies.project_reports.tolerance_record`;
+        the paper's measured spread of equal-arm elements for the paper's design, as the
+        command adds it).
+
+        Args:
+            samples: as-built arrays drawn (2 ... 10^7; None: 10 000, as ``verify``).
+            seed: seed of the draw (0 ... 2^32 - 1; None: 0).
+            kobj: true object stiffnesses to report (N/mm, each > 0; None: the ends and
+                middle of the design's K_obj range, the paper's samples for its design).
+            reference: one of the design's reference elements for every unit (None: each
+                unit the nearest).
+            distribution: ``normal`` (tolerance = 3 sigma, the default) or ``uniform``.
+            notch_radius_tol, arm_tol: what-if +/- notch radius and arm length (mm, 0 ...
+                10) instead of the design's ``[tolerances]``. modulus_tol: what-if +/-
+                relative Young's modulus (0 ... 0.5).
+
+        Raises:
+            DesignError: a value out of its range, a what-if tolerance that lets its
+                feature vanish, or an element that is none of the design's references,
+                named by the keyword argument.
+        """
+        from tactcad.errors import DesignError
+        from tactcad.paper.table1 import with_equal_arm_spread
+        from tactcad.studies.project_reports import tolerance_record
+
+        samples, seed, kobj, distribution = _tolerance_asked(samples, seed, kobj, distribution)
+        if reference is not None:
+            reference = element_number(reference, len(self.plan.slots), "reference")
+        given = {"notch_radius_tol": notch_radius_tol, "arm_tol": arm_tol,
+                 "modulus_tol": modulus_tol}
+        what_if = _what_if_tolerances(given)
+        try:
+            report, fields, _ = tolerance_record(self.plan, samples, seed, kobj, reference,
+                                                 distribution, what_if)
+        except DesignError as exc:  # a what-if too large for its feature
+            raise _what_if_named(exc, given) from None
+        report = with_equal_arm_spread(report, self.plan)
+        return {**report.as_json(), **fields}
+
+    @keyword_errors
     def verify(self, model: str = "auto", progress: Progress | None = None,
                cache: str | Path | None | bool = True) -> "Verification":
         """The verification matrix of the design's requirements.
@@ -776,6 +824,93 @@ def _checked_number(option: str, value: Any, lo: float, hi: float, unit: str, lo
     return tuple(float(x) for x in items) if count else float(value)
 
 
+def _checked_integer(option: str, value: Any, lo: int, hi: int, what: str) -> int:
+    """``value`` when it is an integer (not a bool) in ``lo ... hi``, as the command's
+    option of that range takes it (:func:`tactcad.commands.options.count`).
+
+    Raises:
+        DesignError: not such an integer, named by ``option`` (the API's refusal names the
+            keyword argument).
+    """
+    import numbers
+
+    from tactcad.errors import DesignError
+
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
+            or not lo <= int(value) <= hi:
+        raise DesignError(option, value, f"an integer {lo} ... {hi} ({what})")
+    return int(value)
+
+
+def _tolerance_asked(samples: Any, seed: Any, kobj: Any,
+                     distribution: Any) -> tuple[int, int, tuple[float, ...] | None, str | None]:
+    """The options ``tactcad tolerance`` shares between a metal design and a die, checked
+    with the command's ranges and defaults (:mod:`tactcad.commands.tolerance`).
+
+    Args:
+        samples: as-built designs drawn (None: 10 000). seed: the draw's seed (None: 0).
+        kobj: true object stiffnesses (N/mm, each > 0; None: the design's default).
+        distribution: ``normal``, ``uniform`` or None (the product's default).
+
+    Returns:
+        (samples, seed, kobj as a tuple or None, distribution).
+
+    Raises:
+        DesignError: a value out of its range, named by its option (the API's refusal names
+            the keyword argument).
+    """
+    from tactcad.commands.tolerance import KOBJ_RANGE, SEED_RANGE
+    from tactcad.errors import DesignError
+    from tactcad.studies.tolerance_montecarlo import (MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED,
+                                                      SAMPLES_RANGE)
+
+    samples = _checked_integer("--samples", MONTE_CARLO_SAMPLES if samples is None else samples,
+                               *SAMPLES_RANGE, "samples")
+    seed = _checked_integer("--seed", MONTE_CARLO_SEED if seed is None else seed, *SEED_RANGE,
+                            "a seed")
+    if kobj is not None:
+        if isinstance(kobj, (str, bytes)) or not isinstance(kobj, Iterable) or not list(kobj):
+            raise DesignError("--kobj", kobj, "a list of one or more numbers "
+                                              f">{KOBJ_RANGE[0]:g} ... {KOBJ_RANGE[1]:g} (N/mm)")
+        kobj = tuple(_checked_number("--kobj", k, *KOBJ_RANGE, "N/mm", True) for k in kobj)
+    if distribution not in (None, "normal", "uniform"):
+        raise DesignError("--distribution", distribution, "normal or uniform")
+    return samples, seed, kobj, distribution
+
+
+def _what_if_tolerances(given: Mapping[str, Any]) -> dict[str, float]:
+    """The what-if tolerances given (keyword -> value, None: not given) as the
+    :class:`~tactcad.studies.tolerance_montecarlo.Tolerances` fields they replace, each
+    checked with its option's range (mm, or relative for ``modulus_tol``).
+
+    Raises:
+        DesignError: a value out of its range, named by its option.
+    """
+    from tactcad.commands.tolerance import WHAT_IF_OPTIONS
+
+    out = {}
+    for key, value in given.items():
+        field, lo, hi, unit = WHAT_IF_OPTIONS[key]
+        if value is not None:
+            out[field] = _checked_number(option_name(key), value, lo, hi, unit or "relative",
+                                         False)
+    return out
+
+
+def _what_if_named(exc: Exception, given: Mapping[str, Any]) -> Exception:
+    """A refusal of a what-if tolerance (``tolerance.<field>``, too large for its feature)
+    named by the option that gave it; any other refusal as it is."""
+    from tactcad.commands.tolerance import WHAT_IF_OPTIONS
+    from tactcad.errors import DesignError
+
+    fields = {f"tolerance.{field}": key for key, (field, *_) in WHAT_IF_OPTIONS.items()
+              if given.get(key) is not None}
+    if type(exc) is not DesignError or exc.field not in fields:
+        return exc
+    return DesignError(option_name(fields[exc.field]), exc.value, exc.allowed, exc.why,
+                       exc.file, exc.alternatives, exc.limit)
+
+
 def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProject":
     """A silicon die's design file as a :class:`DieProject`, planned now (the die product's
     ``load`` hook, :mod:`tactcad.products.silicon_die`; :func:`load` calls it for a die's
@@ -800,8 +935,9 @@ def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProj
 class DieProject:
     """A silicon die's validated design and what tactcad computes for it: the same reports
     (the same numbers) ``tactcad stiffness``, ``strength``, ``readout``, ``modal``,
-    ``budget``, ``verify``, ``thermal``, ``crosstalk`` and ``grasp`` print with ``--json``
-    on its file, its :attr:`design_hash` (the export manifest's), and its export and check.
+    ``budget``, ``verify``, ``thermal``, ``crosstalk``, ``grasp`` and ``tolerance`` print
+    with ``--json`` on its file, its :attr:`design_hash` (the export manifest's), and its
+    export and check.
 
     Build with :func:`load`. Units: um for the die's dimensions, N/mm, N, MPa, Hz.
 
@@ -923,6 +1059,27 @@ class DieProject:
                    for k, v in given.items()}
         return self._report("grasp", coupling=coupling, profile=profile or DEFAULT_PROFILE,
                             **checked)
+
+    @keyword_errors
+    def tolerance(self, samples: int | None = None, seed: int | None = None,
+                  kobj: Sequence[float] | None = None, distribution: str | None = None) -> dict:
+        """The Monte Carlo of the die's process tolerances (device layer thickness, the
+        masks' alignment to the cavities) as its budget states them, as ``tactcad tolerance
+        --json`` gives it on the die's file: each row's beam K, each unit's R and the K_obj
+        it reads, and the spread against the budget's terms (N/mm; um for the die).
+
+        Args:
+            samples: as-built dies drawn (2 ... 10^7; None: 10 000). seed: seed of the draw
+                (0 ... 2^32 - 1; None: 0). kobj: true object stiffnesses to report (N/mm,
+                each > 0; None: the die's default). distribution: ``uniform`` (the
+                default, as the budget takes a +- bound) or ``normal``.
+
+        Raises:
+            DesignError: a value out of its range, named by the keyword argument.
+        """
+        samples, seed, kobj, distribution = _tolerance_asked(samples, seed, kobj, distribution)
+        return self._report("tolerance", samples=samples, seed=seed,
+                            kobj=None if kobj is None else list(kobj), distribution=distribution)
 
     @property
     def design_hash(self) -> str:

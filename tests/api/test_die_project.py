@@ -64,3 +64,16 @@ def test_a_die_projects_refusals_name_its_keyword_arguments(die_folder):
         with pytest.raises(DesignError) as err:
             die.grasp(**kwargs)
         assert err.value.field == field and "--" not in str(err.value), str(err.value)
+
+
+def test_a_die_projects_tolerance_is_the_commands_json():
+    import tactcad
+    from tactcad.errors import DesignError
+
+    die = tactcad.load(EXAMPLE)
+    printed = json.loads(run_cli("tolerance", "--design", str(EXAMPLE), "--samples", "2000",
+                                 "--json").stdout)
+    assert json.loads(json.dumps(die.tolerance(samples=2000))) == printed
+    with pytest.raises(DesignError) as err:
+        die.tolerance(samples=1)
+    assert err.value.field == "samples" and "--" not in str(err.value), str(err.value)

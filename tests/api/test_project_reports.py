@@ -1,4 +1,5 @@
-"""A metal array's read-out, thermal drift, K_obj budget, crosstalk and grasp from the Python API:
+"""A metal array's read-out, thermal drift, K_obj budget, crosstalk, grasp and tolerance Monte
+Carlo from the Python API:
 the same numbers as the commands' ``--json``, and refusals naming the keyword."""
 
 from __future__ import annotations
@@ -41,6 +42,11 @@ def without_seconds(record):
     ("grasp", "grasp", {}, ()),
     ("grasp", "grasp", {"force_N": 0.2, "slab_thickness_mm": 4.0, "profile": "slab"},
      ("--force-N", "0.2", "--slab-thickness-mm", "4", "--profile", "slab")),
+    ("tolerance", "tolerance", {"samples": 2000}, ("--samples", "2000")),
+    ("tolerance", "tolerance",
+     {"samples": 2000, "seed": 3, "arm_tol": 0.05, "distribution": "uniform", "reference": 5},
+     ("--samples", "2000", "--seed", "3", "--arm-tol", "0.05", "--distribution", "uniform",
+      "--reference", "5")),
 ])
 def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
     project = tactcad.load(str(DESIGN))
@@ -60,6 +66,15 @@ def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
     ("grasp", {"pin_to_tip_mm": 1.5}, "pin_to_tip_mm"),  # short of the tips
     ("grasp", {"force_N": 0.1, "angle_deg": 3.0}, "force_N"),
     ("grasp", {"coupling": "glue"}, "coupling"),
+    ("tolerance", {"samples": 1}, "samples"),
+    ("tolerance", {"samples": 2000.0}, "samples"),
+    ("tolerance", {"seed": -1}, "seed"),
+    ("tolerance", {"kobj": [2.0, 0.0]}, "kobj"),
+    ("tolerance", {"distribution": "gauss"}, "distribution"),
+    ("tolerance", {"reference": 7}, "reference"),  # the design has six elements
+    ("tolerance", {"samples": 2000, "reference": 1}, "reference"),  # softer than element 2
+    ("tolerance", {"modulus_tol": 0.6}, "modulus_tol"),
+    ("tolerance", {"samples": 2000, "arm_tol": 9.0}, "arm_tol"),  # lets the arm vanish
 ])
 def test_the_apis_reports_refuse_naming_the_keyword(method, kwargs, named):
     project = tactcad.load(str(DESIGN))

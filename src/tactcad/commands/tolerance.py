@@ -3,13 +3,25 @@
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, product_view
 from tactcad.commands.options import count, keep_option_defaults, number
 from tactcad.studies.tolerance_montecarlo import (
     MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED, SAMPLES_RANGE)
+
+#: ``--seed``'s range (a NumPy seed).
+SEED_RANGE = (0, 2**32 - 1)
+#: ``--reference``'s range (an element number; the design's reference elements checked after).
+REFERENCE_RANGE = (1, 10_000)
+#: ``--kobj``'s range (N/mm, 0 excluded).
+KOBJ_RANGE = (0.0, 1e6)
+#: The what-if options by keyword (``arm_tol`` is ``--arm-tol``): the
+#: :class:`~tactcad.studies.tolerance_montecarlo.Tolerances` field each replaces, its range
+#: and unit (mm, or relative: no unit).
+WHAT_IF_OPTIONS = {"notch_radius_tol": ("notch_radius_mm", 0.0, 10.0, "mm"),
+                   "arm_tol": ("arm_length_mm", 0.0, 10.0, "mm"),
+                   "modulus_tol": ("modulus_rel", 0.0, 0.5, "")}
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -42,14 +54,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--samples", type=count(*SAMPLES_RANGE, "samples"),
                    default=MONTE_CARLO_SAMPLES,
                    help="as-built arrays drawn (default %(default)s, as verify draws)")
-    p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=MONTE_CARLO_SEED,
+    p.add_argument("--seed", type=count(*SEED_RANGE, "a seed"), default=MONTE_CARLO_SEED,
                    help="seed of the draw (default %(default)s, as verify)")
-    p.add_argument("--kobj", type=number(0, 1e6, "N/mm", lo_open=True), nargs="+",
+    p.add_argument("--kobj", type=number(*KOBJ_RANGE, "N/mm", lo_open=True), nargs="+",
                    metavar="N_PER_MM", default=None,
                    help="true object stiffnesses to report (default: the ends and middle of "
                         "the design's required K_obj range; the paper's design: its 2.34, "
                         "5.41, 10.01 N/mm samples)")
-    p.add_argument("--reference", type=count(1, 10_000, "an element number"),
+    p.add_argument("--reference", type=count(*REFERENCE_RANGE, "an element number"),
                    default=None, metavar="ELEMENT",
                    help="one reference element for every unit, one of the design's reference "
                         "elements (the nominally stiffest; default: each unit the nearest "
@@ -58,12 +70,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="normal with tolerance = 3 sigma or uniform over +/-tolerance "
                         "(default: normal for an array; uniform for a silicon die, as its "
                         "budget takes a +- bound)")
-    p.add_argument("--notch-radius-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
+    p.add_argument("--notch-radius-tol", type=number(*WHAT_IF_OPTIONS["notch_radius_tol"][1:]),
+                   default=None, metavar="MM",
                    help="what-if: +/- notch radius instead of the design's "
                         "[tolerances] notch_radius_mm")
-    p.add_argument("--arm-tol", type=number(0, 10, "mm"), default=None, metavar="MM",
+    p.add_argument("--arm-tol", type=number(*WHAT_IF_OPTIONS["arm_tol"][1:]), default=None,
+                   metavar="MM",
                    help="what-if: +/- arm length instead of [tolerances] arm_length_mm")
-    p.add_argument("--modulus-tol", type=number(0, 0.5), default=None, metavar="REL",
+    p.add_argument("--modulus-tol", type=number(*WHAT_IF_OPTIONS["modulus_tol"][1:]),
+                   default=None, metavar="REL",
                    help="what-if: +/- relative Young's modulus instead of [tolerances] "
                         "youngs_modulus_rel")
     add_output_args(p, "print JSON")
@@ -76,69 +91,32 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("tolerance", args)  # a silicon die's design: its process tolerances
     if shown is not None:
         return shown
-    import time
-
-    from tactcad.studies.tolerance_montecarlo import DEFAULT_K_OBJ_N_PER_MM, Tolerances, run_tolerance
+    from tactcad.paper.table1 import with_equal_arm_spread
+    from tactcad.studies.project_reports import tolerance_record
 
     plan = plan_from_args(args)
-    given = {"notch_radius_mm": args.notch_radius_tol, "arm_length_mm": args.arm_tol,
-             "modulus_rel": args.modulus_tol}
-    tol = Tolerances.of_plan(plan, distribution=args.distribution or "normal",
-                             **{k: v for k, v in given.items() if v is not None})
-    t0 = time.perf_counter()
-    from tactcad.design.requirements_section import cites_paper
-    from tactcad.studies.design_loads import design_samples
-
-    paper = cites_paper(plan.raw)
-    # the paper's samples for its design only; any other reports its own K_obj range
-    k_obj = args.kobj or (DEFAULT_K_OBJ_N_PER_MM if paper else design_samples(plan, 3))
-    kw = dict(samples=args.samples, seed=args.seed, tolerances=tol, k_obj=k_obj,
-              reference=args.reference)
+    what_if = {field: getattr(args, option) for option, (field, *_) in WHAT_IF_OPTIONS.items()}
+    asked = dict(kobj=args.kobj, reference=args.reference, distribution=args.distribution,
+                 what_if=what_if)
     if args.scheduler or args.workers:
         from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper
 
         with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
             bar = not (args.json or args.quiet)
-            report = run_tolerance(plan, mapper=dask_mapper(client, progress=bar), **kw)
+            report, fields, wall = tolerance_record(plan, args.samples, args.seed, **asked,
+                                                    mapper=dask_mapper(client, progress=bar))
     else:
-        report = run_tolerance(plan, **kw)
-    wall = time.perf_counter() - t0
-    if paper:  # the paper's measured spread belongs to the paper's design
-        from tactcad.paper.table1 import equal_arm_spread
-
-        report = dataclasses.replace(report, table1_spread=equal_arm_spread(plan))
-    from tactcad.studies.verification import requirements_of
-    from tactcad.studies.tolerance_budget import band_check
-
-    check = band_check(plan, report, requirements_of(plan).k_tolerance_rel)
-    used = tolerances_used(plan, tol)
+        report, fields, wall = tolerance_record(plan, args.samples, args.seed, **asked)
+    # the paper's measured spread belongs to the paper's design
+    report = with_equal_arm_spread(report, plan)
     if args.json:
         out = report.as_json()
-        out.update(source="design", tolerances_used=used, k_tolerance_check=check)
+        out.update(fields)
         print(json.dumps(out, indent=2, allow_nan=False))
         return 0
     print_report(report, plan.name, wall)
-    print_check(used, check)
+    print_check(fields["tolerances_used"], fields["k_tolerance_check"])
     return 0
-
-
-def tolerances_used(plan, tol) -> dict:
-    """Every [tolerances] value the study drew from, with where it comes from
-    ("design": the design file, "default": the table's default, which the drawings print too,
-    "override (what-if)": an option of this run)."""
-    from tactcad.design.tolerances import tolerances_of
-    from tactcad.studies.tolerance_budget import FIELDS
-
-    t = tolerances_of(plan.raw)
-    src = dict(tol.sources)
-    out = {key: {"value": getattr(tol, field), "source": src.get(key, "design")}
-           for key, field in FIELDS.items()}
-    out["contact_face_mm"] = {"value": t.contact_face_mm, "source": "design" if
-                              t.source("contact_face_mm") == "design file" else "default",
-                              "note": "does not enter K (the face's size moves no lever)"}
-    out["general"] = {"value": t.general_text, "source": "design" if
-                      t.source("general") == "design file" else "default"}
-    return out
 
 
 def print_check(used: dict, check: dict) -> None:

@@ -390,3 +390,23 @@ def with_measured_sensitivities(report, plan: Plan, model: str):
     if not cites_paper(plan.raw):
         return report
     return replace(report, table1=readout_table1(report.records, report.chain, plan, model))
+
+
+def with_equal_arm_spread(report, plan: Plan):
+    """A tolerance report (:func:`tactcad.studies.project_reports.tolerance_record`) with
+    Table 1's measured spread of equal-arm elements (:func:`equal_arm_spread`: measured K in
+    N/mm, as-built webs in mm) beside the predicted K band, for the paper's design only (a
+    design that does not cite the paper gets its report as it is).
+
+    Args:
+        report: the :class:`~tactcad.studies.tolerance_montecarlo.ToleranceReport`.
+        plan: its design's plan.
+
+    Returns:
+        The report, with ``table1_spread`` set for the paper's design.
+    """
+    from tactcad.design.requirements_section import cites_paper
+
+    if not cites_paper(plan.raw):
+        return report
+    return replace(report, table1_spread=equal_arm_spread(plan))

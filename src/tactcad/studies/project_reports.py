@@ -1,13 +1,13 @@
-"""A metal array's reports as ``tactcad readout``, ``thermal`` and ``budget`` print them with
-``--json`` and :class:`tactcad.api.Project` returns them: one computation for the command
-and the API, so both give the same numbers.
+"""A metal array's reports as ``tactcad readout``, ``thermal``, ``budget``, ``crosstalk`` and
+``tolerance`` print them with ``--json`` and :class:`tactcad.api.Project` returns them: one
+computation for the command and the API, so both give the same numbers.
 
-Units: N, N/mm, V, K, s; errors relative.
+Units: mm, N, N/mm, V, K, s; errors relative.
 """
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from typing import Any, Callable, Mapping, Sequence
 
 from tactcad.errors import DesignError
 
@@ -123,3 +123,86 @@ def crosstalk_record(plan, model: str = "stack-beam") -> tuple[dict, Any]:
     step = {s.number: per_part[s.geometry.part_name]["dF"] for s in plan.slots}
     return {"design": plan.name, **result.as_json(),
             "in_force": crosstalk_in_force(result, rated_full_scale_force(plan), step)}, result
+
+
+def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None = None,
+                     reference: int | None = None, distribution: str | None = None,
+                     what_if: Mapping[str, float] | None = None,
+                     mapper: Callable = map) -> tuple[Any, dict, float]:
+    """The Monte Carlo of the design's manufacturing tolerances
+    (:func:`tactcad.studies.tolerance_montecarlo.run_tolerance`: K per element, R and the
+    reported K_obj per sensing unit, the web tolerance for a +/-5 % K band), whether the K
+    band holds ``[requirements] k_tolerance_rel``
+    (:func:`tactcad.studies.tolerance_budget.band_check`) and the tolerances drawn from
+    (:func:`tolerances_used`). The paper's measured spread of equal-arm elements is added,
+    for the paper's design only, by :func:`tactcad.paper.table1.with_equal_arm_spread`.
+
+    Args:
+        plan: the design's plan. samples: as-built arrays drawn. seed: seed of the draw.
+        kobj: true object stiffnesses to report (N/mm; None: the paper's samples for the
+            paper's design, else the ends and middle of the design's K_obj range).
+        reference: one reference element for every unit (None: each unit the nearest).
+        distribution: ``normal`` (tolerance = 3 sigma) or ``uniform`` (None: normal).
+        what_if: ``Tolerances`` fields replacing the design's ``[tolerances]``
+            (``notch_radius_mm``, ``arm_length_mm`` in mm, ``modulus_rel`` relative).
+        mapper: ``map``-like callable evaluating the chunks (builtin ``map``: in this
+            process; a Dask mapper, :func:`tactcad.studies.sweeps.dask_mapper`).
+
+    Returns:
+        (the report, whose ``as_json()`` with the fields is ``tactcad tolerance --json``;
+        the fields ``source``, ``tolerances_used``, ``k_tolerance_check``; the draw's wall
+        time, s).
+
+    Raises:
+        DesignError: a what-if tolerance that lets its feature vanish, a bad ``reference``,
+            ``samples``, ``seed`` or ``kobj``.
+    """
+    import time
+
+    from tactcad.design.requirements_section import cites_paper
+    from tactcad.studies.design_loads import design_samples
+    from tactcad.studies.tolerance_budget import band_check
+    from tactcad.studies.tolerance_montecarlo import (DEFAULT_K_OBJ_N_PER_MM, Tolerances,
+                                                      run_tolerance)
+    from tactcad.studies.verification import requirements_of
+
+    tol = Tolerances.of_plan(plan, distribution=distribution or "normal",
+                             **{k: v for k, v in (what_if or {}).items() if v is not None})
+    t0 = time.perf_counter()
+    # the paper's samples for its design only; any other reports its own K_obj range
+    k_obj = kobj or (DEFAULT_K_OBJ_N_PER_MM if cites_paper(plan.raw) else design_samples(plan, 3))
+    report = run_tolerance(plan, samples=samples, seed=seed, tolerances=tol, k_obj=k_obj,
+                           reference=reference, mapper=mapper)
+    wall = time.perf_counter() - t0
+    check = band_check(plan, report, requirements_of(plan).k_tolerance_rel)
+    fields = {"source": "design", "tolerances_used": tolerances_used(plan, tol),
+              "k_tolerance_check": check}
+    return report, fields, wall
+
+
+def tolerances_used(plan, tol) -> dict:
+    """Every [tolerances] value the study drew from, with where it comes from
+    ("design": the design file, "default": the table's default, which the drawings print too,
+    "override (what-if)": an option of this run).
+
+    Args:
+        plan: the design's plan. tol: the drawn
+            :class:`~tactcad.studies.tolerance_montecarlo.Tolerances` (mm, relative).
+
+    Returns:
+        ``{key: {"value", "source"}}`` per tolerance, ``contact_face_mm`` (with a note) and
+        ``general`` (the drawings' general tolerance text).
+    """
+    from tactcad.design.tolerances import tolerances_of
+    from tactcad.studies.tolerance_budget import FIELDS
+
+    t = tolerances_of(plan.raw)
+    src = dict(tol.sources)
+    out = {key: {"value": getattr(tol, field), "source": src.get(key, "design")}
+           for key, field in FIELDS.items()}
+    out["contact_face_mm"] = {"value": t.contact_face_mm, "source": "design" if
+                              t.source("contact_face_mm") == "design file" else "default",
+                              "note": "does not enter K (the face's size moves no lever)"}
+    out["general"] = {"value": t.general_text, "source": "design" if
+                      t.source("general") == "design file" else "default"}
+    return out
