@@ -475,9 +475,17 @@ def _inside_folder(folder: Path, rel: str) -> bool:
         (folder / rel).resolve().is_relative_to(folder.resolve())
 
 
-#: ``name = "..."`` in a TOML table (a basic or literal string, a comment after it).
 _TABLE_HEAD = re.compile(r"^\[", re.MULTILINE)
-_NAME_LINE = re.compile(r"""^(\s*name\s*=\s*)("[^"\\\n]*"|'[^'\n]*')(\s*(#.*)?)$""", re.MULTILINE)
+
+
+def _string_line(key: str) -> re.Pattern:
+    """``key = "..."`` in a TOML table (a basic or literal string, a comment after it)."""
+    return re.compile(rf"""^(\s*{re.escape(key)}\s*=\s*)("[^"\\\n]*"|'[^'\n]*')(\s*(#.*)?)$""",
+                      re.MULTILINE)
+
+
+#: ``name = "..."`` in a TOML table.
+_NAME_LINE = _string_line("name")
 
 
 def project_design_name(folder_name: str) -> str | None:
@@ -565,6 +573,52 @@ def named_for_project(design_text: str, folder_name: str, table: str = "design"
     return text, name
 
 
+#: The opening comment of a rigs file copied into a project named otherwise than its source.
+RIGS_HEADER = """# Test rigs of {name}, started from those of {source}: calibration on micro-stages
+# under a force gauge, object-stiffness rig on a wheeled cart, array evaluation rig
+# on a vertical linear axis with added weights. The rig hardware is a starting point
+# to adapt to your lab. `tactcad check` (rigs) judges the force gauge and the weights
+# against the design's rating, and fails while the samples do not span its K_obj range.
+# Units: mm, N, g. Every value is listed under [assumptions] with its reason.
+"""
+_OPENING_COMMENT = re.compile(r"\A(?:#[^\n]*\n)+")
+
+
+def _with_table_string(text: str, table: str, key: str, value: str) -> str:
+    """``text`` with the string ``key = "..."`` of TOML table ``table`` set to ``value``
+    (unchanged where the table states it otherwise than on such a line)."""
+    head = re.search(rf"^\[{table}\]\s*$", text, re.MULTILINE)
+    if head is None:
+        return text
+    nxt = _TABLE_HEAD.search(text, head.end())
+    line = _string_line(key).search(text, head.end(), nxt.start() if nxt else len(text))
+    if line is None:
+        return text
+    return text[:line.start(2)] + json.dumps(value) + text[line.end(2):]
+
+
+def rigs_named_for_project(rigs_text: str, name: str, source: str) -> str:
+    """The rigs file's text of the design ``source`` (an example's) for the project ``name``
+    started from it: its ``[rigs]`` name and description and its opening comment name the
+    project, not ``source``; the rig hardware is kept.
+
+    Args:
+        rigs_text: the rigs file's TOML text.
+        name: the project's design name.
+        source: the design the rigs were written for (named in the comment).
+
+    Returns:
+        The text (unchanged where its ``[rigs]`` table is no ``name = "..."`` line).
+    """
+    text = _with_table_string(rigs_text, "rigs", "name", f"{name[:64 - len('_rigs')]}_rigs")
+    if text == rigs_text:
+        return rigs_text
+    text = _with_table_string(text, "rigs", "description",
+                              f"Calibration, sample-stiffness and array-evaluation rigs of {name}")
+    header = RIGS_HEADER.format(name=name, source=source)
+    return _OPENING_COMMENT.sub(lambda _: header, text, count=1)
+
+
 def new_project(folder: str | Path, *, example: str | None = None,
                 from_design: str | Path | None = None, force: bool = False) -> NewProject:
     """Make a sensor project folder (``tactcad new``).
@@ -572,7 +626,8 @@ def new_project(folder: str | Path, *, example: str | None = None,
     Args:
         folder: the folder to make (or an existing one without the project's files).
         example: a shipped example to start from (:func:`examples`; default
-            ``ti_array_2x3``); its own rigs and scenes are copied.
+            ``ti_array_2x3``); its own rigs and scenes are copied, the rigs named for
+            the project (:func:`rigs_named_for_project`).
         from_design: a design file to start from instead; its rigs and scenes
             are made for it (samples over its K_obj range).
         force: overwrite the project's files in an existing folder.
@@ -622,6 +677,8 @@ def new_project(folder: str | Path, *, example: str | None = None,
     own = companion_files(source, data, Problems(source.name))
     companions = {kind: f.read_text(encoding="utf-8") if f is not None else None
                   for kind, f in own.items()}
+    if name is not None and companions.get("rigs"):  # the rigs name the project, not the example
+        companions["rigs"] = rigs_named_for_project(companions["rigs"], name, source.stem)
     own_parts = source.parent / PURCHASED_PARTS if from_design is None else None
     return write_project(folder, text, f"{name}.toml" if name else source.name, validated.plan,
                          companions=companions, force=force,

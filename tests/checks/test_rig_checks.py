@@ -1,6 +1,7 @@
 """The rigs check group: a rig that loads an element beyond the design's rated
 full-scale force fails, naming the rig, the part, the load and the rating; the
-force gauge must read the rigs' range to 1 % of the rating."""
+force gauge must read the rigs' range to 1 % of the rating; the sample kit must
+span the design's K_obj range."""
 
 from __future__ import annotations
 
@@ -41,7 +42,7 @@ def test_the_ti_example_rigs_pass_and_the_papers_weights_on_it_fail():
     rigs = _rigs_with(project, weights={"mass_g": 100.0, "diameter_mm": 25.0, "count": 3},
                       evaluation={"preload_N": 3.235},
                       force_gauge={"model": "Sauter FH 5", "range_N": 5.0, "resolution_N": 0.001})
-    load, gauge = rig_checks(project.plan, rigs)
+    load, gauge, _ = rig_checks(project.plan, rigs)
     assert not load.passed and load.check == "rig load"
     assert load.subject == "array evaluation rig: weight_100g"
     assert "6.177 N puts" in load.detail and "rated full-scale force 0.1 N" in load.detail
@@ -54,7 +55,7 @@ def test_a_0p077_N_design_fails_the_papers_gauge():
     project = tactcad.load(EXAMPLE, set=values)
     rigs = _rigs_with(project, force_gauge={"model": "Sauter FH 5", "range_N": 5.0,
                                             "resolution_N": 0.001})
-    _, gauge = rig_checks(project.plan, rigs)
+    _, gauge, _ = rig_checks(project.plan, rigs)
     assert not gauge.passed and gauge.subject == "calibration and sample rigs: force_gauge"
     assert "resolution 0.001 N > 0.00077 N" in gauge.detail and "Mark-10" in gauge.detail
 
@@ -65,17 +66,17 @@ def test_a_rating_finer_than_any_catalogue_gauge_resolves_is_undecided_not_faile
     one the catalogue could replace fails."""
     project = tactcad.load(EXAMPLE, set={"requirements.full_scale_force_N": 0.005})
     finest = {"model": "Mark-10 M5-012", "range_N": 0.5, "resolution_N": 0.0001}
-    _, gauge = rig_checks(project.plan, _rigs_with(project, force_gauge=finest))
+    _, gauge, _ = rig_checks(project.plan, _rigs_with(project, force_gauge=finest))
     assert gauge.passed and gauge.undecided and "finest gauge" in gauge.detail
     coarse = {"model": "Sauter FH 5", "range_N": 5.0, "resolution_N": 0.001}
-    _, gauge = rig_checks(project.plan, _rigs_with(project, force_gauge=coarse))
+    _, gauge, _ = rig_checks(project.plan, _rigs_with(project, force_gauge=coarse))
     assert not gauge.passed and not gauge.undecided
 
 
 def test_a_rig_without_its_preload_fails_naming_the_field():
     project = tactcad.load(EXAMPLE)
     rigs = _rigs_with(project, evaluation={})
-    load, _ = rig_checks(project.plan, rigs)
+    load, _, _ = rig_checks(project.plan, rigs)
     assert not load.passed and "[evaluation] preload_N is not stated" in load.detail
 
 
@@ -89,12 +90,12 @@ def test_the_papers_rig_exceeds_the_papers_rating_and_says_why_it_is_kept():
 
     project = tactcad.load()
     rigs = project.validated.rigs
-    load, gauge = rig_checks(project.plan, rigs)
+    load, gauge, _ = rig_checks(project.plan, rigs)
     assert load.passed and gauge.passed
     assert "EXCEEDS the rating" in load.detail and "kept: the paper's evaluation rig" in load.detail
     data = default_rigs_data()
     del data["evaluation"]["beyond_rating_reason"]
-    bare, _ = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    bare, _, _ = rig_checks(project.plan, rigs_from_dict(data, project.plan))
     assert not bare.passed
     top = rigs.evaluation_preload_N + rigs.part("weights").count * 0.980665
     per_newton = element_loads_per_newton(project.plan, rigs.sample_stiffness_N_per_mm)
@@ -110,3 +111,43 @@ def test_a_bad_preload_is_refused_naming_the_field(value):
     data["evaluation"]["preload_N"] = value
     with pytest.raises(DesignError, match="evaluation.preload_N"):
         rigs_from_dict(data, tactcad.load().plan)
+
+
+def test_a_kit_that_no_longer_spans_the_edited_kobj_range_fails_naming_what_to_state(tmp_path):
+    # `tactcad new lab2`, K_obj 20 ... 80 N/mm in its design: check passed the
+    # example's 1 ... 5 N/mm samples while evaluate ran over 20 ... 80
+    import re
+
+    from tactcad.project_folder import new_project
+    from tactcad.studies.design_loads import design_samples
+    from tactcad.studies.verification import requirements_of
+
+    made = new_project(tmp_path / "lab2")
+    text = made.design.read_text(encoding="utf-8")
+    made.design.write_text(re.sub(r"kobj_range_N_per_mm = \[[^\]]*\]",
+                                  "kobj_range_N_per_mm = [20.0, 80.0]", text), encoding="utf-8")
+    project = tactcad.load(made.design).validated
+    assert requirements_of(project.plan).kobj_range_N_per_mm == (20.0, 80.0)
+    context = CheckContext(project.plan, Path("."), None, project)
+    [(label, results)] = list(rig_group(context))
+    [kit] = [r for r in results if r.check == "rig sample kit"]
+    assert not kit.passed
+    assert kit.subject.endswith("sample_k5, sample_k2p24, sample_k1")
+    assert "20 ... 80 N/mm (stated)" in kit.detail and "does not span" in kit.detail
+    assert "rigs.toml [sample] stiffness_N_per_mm" in kit.detail
+    suggested = sorted(design_samples(project.plan), reverse=True)
+    assert "[" + ", ".join(f"{k:g}" for k in suggested) + "]" in kit.detail
+
+
+def test_the_designs_own_samples_span_its_range_though_cast_to_3_digits():
+    # the paper's range ends at 10.01 N/mm; its own samples, to 3 digits, at 10.0
+    from tactcad.studies.design_loads import design_samples
+
+    project = tactcad.load()
+    data = default_rigs_data()
+    data["sample"]["stiffness_N_per_mm"] = design_samples(project.plan)
+    *_, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert kit.passed and kit.check == "rig sample kit"
+    data["sample"]["stiffness_N_per_mm"] = design_samples(project.plan)[1:]  # the softest dropped
+    *_, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert not kit.passed

@@ -50,7 +50,9 @@ def test_new_from_an_example_copies_its_own_rigs_and_makes_the_rest(tmp_path):
                                ".gitignore", ".github/workflows/hardware.yml",
                                "purchased-parts.md"}
     example = EXAMPLES / "ti_array_2x3"
-    assert (made.folder / "rigs.toml").read_bytes() == (example / "rigs.toml").read_bytes()
+    rigs, own = (tomllib.loads((f / "rigs.toml").read_text(encoding="utf-8"))
+                 for f in (made.folder, example))
+    assert {**rigs, "rigs": None} == {**own, "rigs": None}  # the hardware kept, renamed
     project = tactcad.load(made.design)
     assert project.validated.rigs_file == "rigs.toml"
     readme = (made.folder / "README.md").read_text(encoding="utf-8")
@@ -99,7 +101,9 @@ def test_new_around_a_design_makes_rigs_over_its_own_kobj_range(tmp_path):
     samples = rigs["sample"]["stiffness_N_per_mm"]
     assert samples == [5.0, 2.24, 1.0]  # the design states K_obj 1 ... 5 N/mm
     scenes = (made.folder / "scenes.toml").read_text(encoding="utf-8")
-    assert "The 2 x 3 array" in scenes and "the 6 elements and 4 spacers" in scenes
+    described = {n: s.description for n, s in tactcad.load(made.design).validated.scenes.items()}
+    assert described["array"].startswith("The 2 x 3 array")
+    assert "the 6 elements and 4 spacers" in described["wirecut"]
     text = (made.folder / "rigs.toml").read_text(encoding="utf-8") + scenes
     assert not [k for k in PAPER_SAMPLES if k in text] and "paper" not in text.lower()
     tables = tomllib.loads(made.design.read_text(encoding="utf-8"))
@@ -512,3 +516,54 @@ def test_a_new_project_from_another_example_names_not_the_papers_design(tmp_path
     for name in made.files:
         text = (made.folder / name).read_text(encoding="utf-8").lower()
         assert "macro_array" not in text and "macro array" not in text, name
+
+
+def _edited(design: Path, columns: int, arms: list[float], grade: str) -> None:
+    """The design file with its grid, arm lengths and grade changed, as a lab edits it."""
+    text = design.read_text(encoding="utf-8")
+    text = re.sub(r"^columns = \d+", f"columns = {columns}", text, flags=re.MULTILINE)
+    text = re.sub(r"^lengths_mm = \[[^\]]*\]", f"lengths_mm = {arms}", text, flags=re.MULTILINE)
+    text = re.sub(r'^grade = "[^"]*"', f'grade = "{grade}"', text, flags=re.MULTILINE)
+    design.write_text(text, encoding="utf-8")
+
+
+def test_a_new_projects_scene_texts_follow_its_edited_design(tmp_path):
+    # the example's scenes said "the six elements and four spacers" and "The 2 x 3
+    # array" after the lab's design had grown to 2 x 4
+    from tactcad.assembly.rig_models import describe
+
+    made = new_project(tmp_path / "myarray")
+    _edited(made.design, 4, [15.0, 7.0, 15.0, 15.0, 15.0, 7.0, 15.0, 15.0], "17-4PH-H900")
+    project = tactcad.load(made.design).validated
+    plan = project.plan
+    assert (plan.rows, plan.columns, len(plan.slots)) == (2, 4, 8)
+    described = {n: s.description for n, s in project.scenes.items()}
+    assert (f"the {len(plan.slots)} elements and {len(plan.spacer_placements)} spacers"
+            in described["wirecut"])
+    assert described["array"].startswith(f"The {plan.rows} x {plan.columns} array")
+    gauge = project.rigs.part("force_gauge").model
+    assert f"force gauge {gauge} with the" in described["calibration-rig"]
+    lines = "\n".join(describe(project))
+    assert "six" not in lines and "2 x 3 array" not in lines and "$" not in lines
+
+
+def test_a_new_projects_rigs_name_the_project_not_the_example(tmp_path):
+    made = new_project(tmp_path / "myarray")
+    text = (made.folder / "rigs.toml").read_text(encoding="utf-8")
+    rigs = tomllib.loads(text)["rigs"]
+    assert rigs["name"] == "myarray_rigs" and rigs["description"].endswith("rigs of myarray")
+    assert "example_rigs" not in text and "titanium example array" not in text
+    assert text.startswith("# Test rigs of myarray")
+    assert tactcad.load(made.design).validated.rigs.name == "myarray_rigs"
+
+
+def test_a_scene_description_with_an_unknown_word_is_refused_naming_it(tmp_path):
+    made = new_project(tmp_path / "p")
+    scenes = made.folder / "scenes.toml"
+    text = scenes.read_text(encoding="utf-8")
+    scenes.write_text(text.replace("the $n_elements elements", "the $n_elemnts elements"),
+                      encoding="utf-8")
+    with pytest.raises(DesignErrors) as caught:
+        tactcad.load(made.design).validated
+    assert "scene.wirecut.description" in str(caught.value) and "$n_elemnts" in str(caught.value)
+    assert "$n_elements" in str(caught.value)

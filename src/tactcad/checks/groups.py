@@ -168,7 +168,8 @@ for _group in (
                    "and before its yield-limited one", "tactcad.checks.stop_checks", "stop_group",
                    on_export=False),
         CheckGroup("rigs", "the test rigs against the design's rated full-scale force: no rig "
-                   "loads an element beyond it, the force gauge's range and resolution fit it",
+                   "loads an element beyond it, the force gauge's range and resolution fit it; and "
+                   "the samples span the design's K_obj range",
                    "tactcad.checks.rig_checks", "rig_group", on_export=False),
         CheckGroup("process", "each part cut from sheet against its process's rules (sheet "
                    "range, smallest hole, web and ligament, inside radius, slot, the web's "

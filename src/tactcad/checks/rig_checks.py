@@ -1,6 +1,7 @@
 """The test rigs against the design's rating: no rig loads an element beyond the
-rated full-scale force, and the force gauge reads the range the rigs need to
-the resolution the rating asks (:mod:`tactcad.studies.rig_sizing`)."""
+rated full-scale force, the force gauge reads the range the rigs need to
+the resolution the rating asks (:mod:`tactcad.studies.rig_sizing`), and the
+sample kit spans the design's K_obj range (what ``evaluate`` runs over)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,10 @@ from typing import Iterator
 
 from tactcad.checks.check_result import CheckResult
 from tactcad.checks.groups import CheckContext, Found
+
+#: How far (relative) a sample may fall inside an end of the K_obj range and still
+#: cover it: samples are stated to 3 significant digits (10.01 N/mm is cast as 10.0).
+SPAN_TOLERANCE = 5e-3
 
 
 def rig_group(context: CheckContext) -> Iterator[Found]:
@@ -31,7 +36,42 @@ def rig_checks(plan, rigs) -> list[CheckResult]:
     from tactcad.studies.verification import rated_full_scale_force
 
     rated = rated_full_scale_force(plan)
-    return [evaluation_load_check(plan, rigs, rated), force_gauge_check(rigs, rated)]
+    return [evaluation_load_check(plan, rigs, rated), force_gauge_check(rigs, rated),
+            sample_kit_check(plan, rigs)]
+
+
+def sample_kit_check(plan, rigs) -> CheckResult:
+    """Fails when the rigs' samples (``[sample] stiffness_N_per_mm``, N/mm) do not span the
+    design's K_obj range (``requirements.kobj_range_N_per_mm``, stated or derived, N/mm):
+    the lab's kit would not test the stiffnesses ``evaluate`` and the design claim.
+
+    Args:
+        plan: the design's plan.
+        rigs: its :class:`~tactcad.design.rig_plan.RigDesign`.
+
+    Returns:
+        The result, naming the samples, the range and, on a failure, samples over it.
+    """
+    from tactcad.partlib.sample import sample_name
+    from tactcad.studies.design_loads import design_samples
+    from tactcad.studies.verification import requirements_of
+
+    req = requirements_of(plan)
+    lo, hi = req.kobj_range_N_per_mm
+    kit = rigs.sample_stiffness_N_per_mm
+    subject = "sample-stiffness and evaluation rigs: " + ", ".join(sample_name(k) for k in kit)
+    how = "stated" if "kobj_range_N_per_mm" in req.stated else "derived from the elements"
+    text = (f"samples {min(kit):g} ... {max(kit):g} N/mm against the design's K_obj range "
+            f"{lo:.4g} ... {hi:.4g} N/mm ({how})")
+    covered = min(kit) <= lo * (1 + SPAN_TOLERANCE) and max(kit) >= hi * (1 - SPAN_TOLERANCE)
+    if covered:
+        return CheckResult("rig sample kit", subject, True, text)
+    suggested = ", ".join(f"{k:g}" for k in sorted(design_samples(plan), reverse=True))
+    return CheckResult("rig sample kit", subject, False,
+                       f"{text}: the kit does not span it; state samples that do in "
+                       f"{rigs.source or 'rigs.toml'} [sample] stiffness_N_per_mm, e.g. "
+                       f"[{suggested}] (the design's own samples, those evaluate runs over), "
+                       "and each scene's sample_stiffness_N_per_mm one of them")
 
 
 def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:

@@ -22,6 +22,7 @@ from __future__ import annotations
 import errno
 from dataclasses import dataclass, replace
 from pathlib import Path
+from string import Template
 from typing import Any, Callable, Iterator, Mapping
 
 from tactcad.design.array_plan import (DEFAULT_DESIGN, Plan, plan_from_model,
@@ -150,6 +151,50 @@ def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
                          file=scenes_file)
 
 
+#: The words a scene's ``description`` may hold (``$grid``), filled from the design
+#: (and its rigs) each time the project is read, so a description that counts or
+#: names the design's parts follows every edit of it.
+SCENE_WORDS = {"name": "the design's name", "grid": "the array's rows x columns (2 x 3)",
+               "n_elements": "the number of elements", "n_spacers": "the number of spacers"}
+#: The words only a project with test rigs has (its rigs file gives them).
+RIG_SCENE_WORDS = {"gauge_model": "the rigs' force gauge model",
+                   "indenter": "the indenter's contact face, width x depth in mm (2 x 3)"}
+
+
+def scene_words(plan: Plan, rigs: RigDesign | None) -> dict[str, str]:
+    """The value of every word of :data:`SCENE_WORDS` (and of :data:`RIG_SCENE_WORDS`
+    where the project has test rigs) for ``plan`` and its ``rigs``.
+
+    Returns:
+        word -> text (counts as digits, sizes in mm).
+    """
+    words = {"name": plan.name, "grid": f"{plan.rows} x {plan.columns}",
+             "n_elements": f"{len(plan.slots)}", "n_spacers": f"{len(plan.spacer_placements)}"}
+    if rigs is None:
+        return words
+    tip = rigs.part("indenter")
+    return words | {"gauge_model": rigs.part("force_gauge").model,
+                    "indenter": f"{tip.contact_width_mm:g} x {tip.contact_depth_mm:g}"}
+
+
+def _worded_scenes(scenes: Mapping[str, SceneSpec], words: Mapping[str, str],
+                   problems: Problems, scenes_file: str) -> dict[str, SceneSpec]:
+    """The scenes with the words of their descriptions filled in (``$$`` is a ``$``);
+    a word that is not one of ``words`` is refused into ``problems``."""
+    out = {}
+    for name, spec in scenes.items():
+        template = Template(spec.description)
+        unknown = [w for w in template.get_identifiers() if w not in words]
+        if unknown:
+            problems.add(f"scene.{name}.description", "$" + unknown[0],
+                         "words " + ", ".join("$" + w for w in words) + " (or $$ for a $)",
+                         "a description's words are filled in from the design", file=scenes_file)
+            out[name] = spec
+            continue
+        out[name] = replace(spec, description=template.safe_substitute(words))
+    return out
+
+
 def _check_scenes_without_rigs(scenes: Mapping[str, SceneSpec], plan: Plan, problems: Problems,
                                scenes_file: str) -> None:
     """Refuse a scene of a test rig in a project without test rigs."""
@@ -184,6 +229,9 @@ def _companions_of(plan: Plan | None, rigs: Mapping[str, Any] | None,
         problems.extend(found.errors)
     if rig_design is not None and specs:
         _check_sample_stiffness(specs, rig_design, problems, scenes_file)
+    # a project whose rigs were refused has no rig words: its scenes wait for the rigs
+    if plan is not None and (rig_design is not None or not construction_of(plan).test_rigs):
+        specs = _worded_scenes(specs, scene_words(plan, rig_design), problems, scenes_file)
     if rigs is None and plan is not None and not construction_of(plan).test_rigs:
         _check_scenes_without_rigs(specs, plan, problems, scenes_file)
     return rig_design, specs

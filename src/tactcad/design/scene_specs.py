@@ -124,7 +124,8 @@ def validate_scenes(data: Mapping[str, Any], file: str = "") -> tuple[dict[str, 
 
 
 def load_scenes(path: str | Path | None = None) -> dict[str, SceneSpec]:
-    """Read and validate a scenes file.
+    """Read and validate a scenes file. A description's words (``$grid``) are left as
+    written: :func:`tactcad.design.project.load_project` fills them in from the design.
 
     Raises:
         DesignError: unreadable file, unknown key, bad rig, group or level
