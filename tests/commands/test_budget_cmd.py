@@ -23,8 +23,13 @@ def test_both_examples_have_every_source_at_every_kobj(design):
     for u in d["units"]:
         assert set(u["sources"]) == SOURCES
         assert all(len(v["after_rel"]) == 7 for v in u["sources"].values())
-        assert all(x > 0 for x in u["rss_rel"])
+        # a unit alone resolving K_obj worse than required reads none there (as verify's
+        # readable range judges): its sums are unreadable, None
+        assert len(u["reads_kobj"]) == 7
+        assert all((x is not None and x > 0) == reads
+                   for x, reads in zip(u["rss_rel"], u["reads_kobj"]))
     assert len(d["array"]["dominant"]) == 7
+    assert all(x is not None and x > 0 for x in d["array"]["rss_rel"])
 
 
 def test_force_and_temperature_step_reach_the_budget():

@@ -185,9 +185,32 @@ def render(budget) -> str:
         lines.append("| worst case | " + " | ".join(_pct(x) for x in u["worst_case_rel"]) + " |")
         lines.append("| dominant | " + " | ".join(d.replace("_", " ") for d in u["dominant"])
                      + " |")
+        lines += readout_alone_lines(u, budget)
     lines += ["", *render_array(budget)]
     lines += [""] + [f"  {k}: {v}" for k, v in budget.notes.items()]
     return "\n".join(lines)
+
+
+def readout_alone_lines(unit: dict, budget) -> list[str]:
+    """How a unit's read-out term differs from ``tactcad readout``'s K_obj resolution, as
+    text: the unit alone (eq. 1-3, the same force, noise and K_obj, 1 sigma) and the coupled
+    term over it, not summed; and the K_obj it reads none of (its own resolution past the
+    required ``kobj_resolution_rel``), if any."""
+    lines = ["| unit alone: tactcad readout's K_obj resolution (1 sigma; not summed) | "
+             + " | ".join(_pct(x) for x in unit["readout_alone_rel"]) + " |",
+             "| read-out noise on the coupled sample / unit alone | "
+             + " | ".join("n/a" if x is None else f"{x:.3g} x"
+                          for x in unit["readout_coupled_over_alone"]) + " |"]
+    unread = [k for k, reads in zip(budget.k_obj, unit["reads_kobj"]) if not reads]
+    if unread:
+        lines.append(
+            f"  unit {unit['reference_element']}/{unit['measuring_element']} reads no K_obj at "
+            + ", ".join(f"{k:.3g}" for k in unread)
+            + f" N/mm: alone it resolves K_obj worse than the required "
+            f"{_pct(budget.notes['readable_within_rel'])} (requirements.kobj_resolution_rel; "
+            f"K_r / K_m = {unit['K_r_N_per_mm'] / unit['K_m_N_per_mm']:.4g}), as tactcad "
+            f"verify's readable K_obj range judges; its read-out term is unreadable there")
+    return lines
 
 
 def render_array(budget) -> list[str]:

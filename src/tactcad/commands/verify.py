@@ -107,7 +107,8 @@ def kobj_budget_section(plan, req, model: str):
     try:
         return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
                            DEFAULT_DELTA_T_K, "closed-form" if model == "auto" else model,
-                           force_gauge=calibration_gauge(plan))
+                           force_gauge=calibration_gauge(plan),
+                           readable_within_rel=req.kobj_resolution_rel)
     except DesignError as exc:
         return str(exc)
 

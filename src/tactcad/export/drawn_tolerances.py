@@ -83,7 +83,8 @@ def _from_closed_form_budget(plan: Plan) -> TipHeightDrawing | None:
     req = requirements_of(plan)
     try:
         budget = kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                             DEFAULT_DELTA_T_K, force_gauge=calibration_gauge(plan))
+                             DEFAULT_DELTA_T_K, force_gauge=calibration_gauge(plan),
+                             readable_within_rel=req.kobj_resolution_rel)
     except DesignError:
         return None
     return tip_height_from_budget(plan, budget)

@@ -190,7 +190,8 @@ def kobj_budget_section(plan: Plan) -> dict | None:
     req = requirements_of(plan)
     try:
         return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                           DEFAULT_DELTA_T_K, force_gauge=calibration_gauge(plan)).as_json()
+                           DEFAULT_DELTA_T_K, force_gauge=calibration_gauge(plan),
+                           readable_within_rel=req.kobj_resolution_rel).as_json()
     except DesignError:
         return None
 

@@ -38,7 +38,15 @@ every K_obj of the grid, before and after the correction the lab applies):
 (a) read-out noise and quantisation: each element's force resolution through the
     design's read-out chain (:func:`tactcad.mechanics.readout_chain.element_force_resolution_N`,
     1 sigma) as a deflection resolution dF / K over the element's deflection on the
-    coupled sample; the two are independent (quadrature).
+    coupled sample; the two are independent (quadrature). It is
+    :func:`tactcad.mechanics.resolution.noise_kobj_rel`, the function of ``readout``'s and
+    ``verify``'s K_obj resolution, with the coupled R and slope in place of eq. 2's: the
+    unit alone (that resolution, :func:`unit_alone_resolution_rel`, same force, noise and
+    K_obj) differs from the term only by the tips' coupling, and each unit's record states
+    both and their ratio. A unit reads no K_obj where that resolution exceeds the required
+    ``kobj_resolution_rel`` (``verify``'s readable range judges so,
+    :func:`tactcad.mechanics.resolution.reads_within`): there the term is unreadable (inf),
+    never the small figure the coupling alone would leave a unit whose K_r / K_m is near 1.
 (b) thermal zero: each element's apparent tip force per kelvin (TN-504 thermal output
     over the grid strain per newton, :func:`tactcad.mechanics.thermal_drift.thermal_report`;
     zero with a half-bridge dummy gauge) times the temperature step over the element's
@@ -216,6 +224,9 @@ class Context:
     #: (N/mm)), where it comes from, and the force its Z steps load each element to
     force_gauge: Any = None
     cache: dict = field(default_factory=dict)
+    #: the largest relative K_obj resolution of the unit alone that reads K_obj (the
+    #: requirement's ``kobj_resolution_rel``); inf judges no unit unreadable
+    readable_within_rel: float = math.inf
 
     def once(self, key: str, compute: Callable[[], object]):
         if key not in self.cache:
@@ -244,23 +255,81 @@ class Contribution(NamedTuple):
 # The sources: (context, unit, operating point) -> Contribution
 # ---------------------------------------------------------------------------
 def readout_noise(ctx: Context, unit: Unit, op: Operating) -> Contribution:
-    """(a) Each element's force resolution (1 sigma) through the read-out chain as a
-    deflection resolution dF / K, independent, relative to its deflection on the coupled
-    sample and read by the coupled inversion (:func:`independent_reading_error_rel`)."""
-    e_m, e_r = coupled_deflections_mm(ctx, unit, op)
-    rel = independent_reading_error_rel(
-        ctx, unit, op.k_obj, de_m=deflection_resolution_mm(ctx, unit.measuring) / e_m,
-        de_r=deflection_resolution_mm(ctx, unit.reference) / e_r)
+    """(a) :func:`coupled_readout_noise_rel`, unreadable (inf) where the unit alone does not
+    read K_obj within ``ctx.readable_within_rel`` (:func:`unit_reads`)."""
+    rel = np.where(unit_reads(ctx, unit, op), coupled_readout_noise_rel(ctx, unit, op), np.inf)
     return Contribution(rel, rel)
+
+
+def coupled_readout_noise_rel(ctx: Context, unit: Unit, op: Operating) -> np.ndarray:
+    """Each element's force resolution (1 sigma) through the read-out chain as a deflection
+    resolution dF / K, independent, relative to its deflection on the coupled sample and
+    read by the coupled inversion: :func:`tactcad.mechanics.resolution.noise_kobj_rel` with
+    the coupled R and slope.
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        op: its operating point (the K_obj grid, N/mm, and the reference force, N).
+
+    Returns:
+        sigma_K_obj / K_obj over the grid (inf where the coupled R does not move).
+    """
+    from tactcad.mechanics.resolution import noise_kobj_rel
+
+    return noise_kobj_rel(_cached_coupled_ratio(ctx, unit, op.k_obj),
+                          _cached_coupled_slope(ctx, unit, op.k_obj), op.e_r,
+                          deflection_resolution_mm(ctx, unit.measuring),
+                          deflection_resolution_mm(ctx, unit.reference))
+
+
+def unit_alone_resolution_rel(ctx: Context, unit: Unit, op: Operating) -> np.ndarray:
+    """The unit's own K_obj resolution (1 sigma) at each K_obj of ``op``: pressed alone until
+    its reference carries ``op.force_r``, each element read to its force resolution through
+    the read-out chain, eq. 1-3 (:func:`tactcad.mechanics.resolution.unit_resolution`, what
+    ``readout`` and ``verify`` report, worst over their range).
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        op: its operating point (the K_obj grid, N/mm, and the reference force, N).
+
+    Returns:
+        sigma_K_obj / K_obj over the grid.
+    """
+    from tactcad.mechanics.resolution import unit_resolution
+
+    df = _force_resolutions(ctx)
+    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
+    return unit_resolution(op.k_m, op.k_r, op.k_obj, op.force_r, df[part(unit.measuring)]["dF"],
+                           force_resolution_reference_N=df[part(unit.reference)]["dF"]
+                           )["K_obj_resolution_rel"]
+
+
+def unit_reads(ctx: Context, unit: Unit, op: Operating) -> np.ndarray:
+    """Where the unit reads K_obj: its own resolution (:func:`unit_alone_resolution_rel`)
+    within ``ctx.readable_within_rel``, as ``verify``'s readable range judges it
+    (:func:`tactcad.mechanics.resolution.reads_within`). The coupling moves R even between
+    springs of one K; without K_r / K_m the unit has nothing of its own to read.
+
+    Returns:
+        A boolean array over the grid of ``op``.
+    """
+    from tactcad.mechanics.resolution import reads_within
+
+    return reads_within(unit_alone_resolution_rel(ctx, unit, op), ctx.readable_within_rel)
 
 
 def deflection_resolution_mm(ctx: Context, number: int) -> float:
     """Element ``number``'s deflection resolution (mm, 1 sigma): its force resolution through
     the read-out chain over its K."""
+    df = _force_resolutions(ctx)
+    return df[ctx.plan.element(number).geometry.part_name]["dF"] / ctx.k_of(number)
+
+
+def _force_resolutions(ctx: Context) -> dict[str, dict]:
+    # element_force_resolution_N of the design at the budget's level, once per context
     from tactcad.mechanics.readout_chain import element_force_resolution_N
 
-    df = ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
-    return df[ctx.plan.element(number).geometry.part_name]["dF"] / ctx.k_of(number)
+    return ctx.once("readout", lambda: element_force_resolution_N(ctx.plan, ctx.model))
 
 
 def _unit_thermal(ctx: Context, unit: Unit, op: Operating):
@@ -1116,9 +1185,14 @@ def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
     parts = {s.key: s.function(ctx, unit, op) for s in SOURCES}
     after = np.array([parts[k].after for k in SOURCE_KEYS])
     before = np.array([parts[k].before for k in SOURCE_KEYS])
+    alone = unit_alone_resolution_rel(ctx, unit, op)
     return {"reference_element": unit.reference, "measuring_element": unit.measuring,
             "K_r_N_per_mm": op.k_r, "K_m_N_per_mm": op.k_m,
             "R": listed(op.ratio), "force_measuring_N": listed(op.force_m),
+            "reads_kobj": unit_reads(ctx, unit, op).tolist(),
+            "readout_alone_rel": listed(alone),
+            "readout_coupled_over_alone": listed(coupled_readout_noise_rel(ctx, unit, op)
+                                                 / alone),
             "sources": {s.key: {"before_rel": listed(parts[s.key].before),
                                 "after_rel": listed(parts[s.key].after),
                                 **unmodelled_record(s, ctx.plan)} for s in SOURCES},
@@ -1193,7 +1267,7 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                 errors: Mapping[str, float] | None = None,
                 calibrations: Mapping[int, object] | None = None,
                 points: int = BUDGET_POINTS, *,
-                force_gauge: Any) -> KobjBudget:
+                force_gauge: Any, readable_within_rel: float | None = None) -> KobjBudget:
     """The K_obj error budget of every sensing unit of ``plan`` over ``kobj_range``.
 
     Args:
@@ -1215,6 +1289,11 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
             elements are calibrated on, where it comes from, the force its Z steps reach):
             :func:`tactcad.studies.verification.calibration_gauge` of ``plan``, the gauge and
             steps ``calibrate`` uses, so that every caller's budget reads one calibration.
+        readable_within_rel: the largest relative K_obj resolution of a unit alone that
+            reads K_obj (> 0; the requirement's ``kobj_resolution_rel``, as ``verify``
+            judges the readable range): a unit reads none where its own is larger
+            (:func:`unit_reads`). None: the design's
+            (:func:`tactcad.studies.verification.requirements_of`).
 
     Returns:
         :class:`KobjBudget`.
@@ -1235,12 +1314,19 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         raise DesignError("delta_T_K", delta_T_K, "a number 0 ... 100 K")
     if not 2 <= points <= 101:
         raise DesignError("points", points, "an integer 2 ... 101")
+    if readable_within_rel is None:
+        from tactcad.studies.verification import requirements_of
+
+        readable_within_rel = requirements_of(plan).kobj_resolution_rel
+    if not (readable_within_rel > 0):  # nan too
+        raise DesignError("readable_within_rel", readable_within_rel, "a number > 0")
     if stiffness is None or errors is None:
         est = {n: estimate(model, g, plan.material) for n, g in plan.distinct_elements.items()}
         stiffness = {n: e.stiffness_N_per_mm for n, e in est.items()}
         errors = {n: e.error_estimate_rel for n, e in est.items()}
     ctx = Context(plan, model, stiffness, errors, float(force_N), float(delta_T_K),
-                  dict(calibrations or {}), force_gauge)
+                  dict(calibrations or {}), force_gauge,
+                  readable_within_rel=float(readable_within_rel))
     k_obj = kobj_grid((lo, hi), points)
     pairs = [Unit(r.number, m.number) for r, m in row_units(plan, dict(stiffness))]
     units = [unit_budget(ctx, u, k_obj) for u in pairs]
@@ -1282,6 +1368,15 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
             "calibration_gauge_fits": need.fits,
             "calibration_runs_needed": need.runs_needed,
             "calibration_allowance": need.words} if need is not None else {}),
+        "readout_noise": "1 sigma, each unit pressed into one sample with every tip (the "
+                         "coupled inversion's R and slope); readout_alone_rel is the unit "
+                         "pressed alone (tactcad readout's and verify's K_obj resolution, eq. "
+                         "1-3, the same force, noise and K_obj; they report its worst over "
+                         "the range), readout_coupled_over_alone the term over it. A unit "
+                         f"whose own resolution exceeds {readable_within_rel:.4g} (the "
+                         "required kobj_resolution_rel, as verify's readable range) reads no "
+                         "K_obj there (reads_kobj false): its term and sums are unreadable",
+        "readable_within_rel": float(readable_within_rel),
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",
         "manufacturing_tolerance": "calibration measures each element's K (eq. 5), so the "

@@ -42,13 +42,57 @@ def unit_resolution(k_m: float, k_r: float, k_obj, full_scale_force_N: float,
     F_m = F_r * R * k_m / k_r
     dF_r = force_resolution_N if force_resolution_reference_N is None \
         else force_resolution_reference_N
-    dR = R * np.hypot(force_resolution_N / F_m, dF_r / F_r)
-    dk = np.abs(dk_dr) * dR
+    e_r = F_r / k_r
+    dR = ratio_noise(R, e_r, force_resolution_N / k_m, dF_r / k_r)
+    rel = noise_kobj_rel(R, k_obj / dk_dr, e_r, force_resolution_N / k_m, dF_r / k_r)
     return {"K_obj_N_per_mm": k_obj, "R": R, "dR_dKobj_per_N_per_mm": 1.0 / dk_dr,
             "force_measuring_N": F_m, "force_reference_N": F_r, "R_resolution": dR,
-            "K_obj_resolution_N_per_mm": dk, "K_obj_resolution_rel": dk / k_obj}
+            "K_obj_resolution_N_per_mm": rel * k_obj, "K_obj_resolution_rel": rel}
 
 
+def ratio_noise(ratio, deflection_r_mm, deflection_resolution_m_mm: float,
+                deflection_resolution_r_mm: float) -> np.ndarray:
+    """The standard deviation of R = e_m / e_r (eq. 2) when each deflection is read to its
+    own resolution, independently (first order, GUM 5.1.2).
+
+    Args:
+        ratio: R at each K_obj (eq. 2 alone, or on a coupled sample).
+        deflection_r_mm: the reference's deflection e_r (mm); e_m = R e_r.
+        deflection_resolution_m_mm, deflection_resolution_r_mm: the measuring and the
+            reference element's deflection resolution (mm, 1 sigma): force resolution / K.
+
+    Returns:
+        sigma_R = R sqrt((de_m / e_m)^2 + (de_r / e_r)^2) at each K_obj (array).
+    """
+    ratio = np.asarray(ratio, float)
+    e_r = np.asarray(deflection_r_mm, float)
+    return np.abs(ratio) * np.hypot(deflection_resolution_m_mm / (ratio * e_r),
+                                    deflection_resolution_r_mm / e_r)
+
+
+def noise_kobj_rel(ratio, ratio_per_ln_kobj, deflection_r_mm, deflection_resolution_m_mm: float,
+                   deflection_resolution_r_mm: float) -> np.ndarray:
+    """The relative K_obj error (1 sigma) a unit's read-out noise leaves: :func:`ratio_noise`
+    over the slope dR/d ln K_obj of the inversion that reads K_obj from R. ``readout``'s and
+    ``verify``'s K_obj resolution (:func:`unit_resolution`: eq. 2's R and slope) and the
+    budget's read-out term (the coupled sample's R and slope,
+    :func:`tactcad.in_use.kobj_budget.readout_noise`) are both this function.
+
+    Args:
+        ratio: R = e_m / e_r at each K_obj.
+        ratio_per_ln_kobj: dR/d ln K_obj of the same model at each K_obj.
+        deflection_r_mm: the reference's deflection e_r (mm).
+        deflection_resolution_m_mm, deflection_resolution_r_mm: each element's deflection
+            resolution (mm, 1 sigma): its force resolution through the read-out chain / K.
+
+    Returns:
+        sigma_K_obj / K_obj at each K_obj (array); inf where R does not move with K_obj
+        (no K_obj can be read there).
+    """
+    with np.errstate(all="ignore"):
+        rel = ratio_noise(ratio, deflection_r_mm, deflection_resolution_m_mm,
+                          deflection_resolution_r_mm) / np.abs(ratio_per_ln_kobj)
+    return np.where(np.isfinite(rel), rel, np.inf)
 
 
 class ReadUnit(NamedTuple):
@@ -83,3 +127,19 @@ def worst_resolution_rel(units: Sequence[ReadUnit], kobj_range: tuple[float, flo
     :data:`KOBJ_POINTS` log-spaced points, ends included); inf without a unit."""
     k_obj = np.geomspace(*kobj_range, KOBJ_POINTS)
     return float(np.max(best_unit_resolution_rel(units, k_obj, full_scale_force_N)))
+
+
+def reads_within(resolution_rel, target_rel: float) -> np.ndarray:
+    """Where a K_obj resolution reads K_obj: at most ``target_rel`` (the requirement's
+    ``kobj_resolution_rel``). ``verify``'s readable K_obj range and the budget's readable
+    units both judge so.
+
+    Args:
+        resolution_rel: relative K_obj resolution at each K_obj (:func:`unit_resolution`'s,
+            or an array's best, :func:`best_unit_resolution_rel`).
+        target_rel: the largest relative resolution that reads K_obj.
+
+    Returns:
+        A boolean array over the K_obj given.
+    """
+    return np.asarray(resolution_rel, float) <= target_rel

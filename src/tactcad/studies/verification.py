@@ -287,13 +287,13 @@ def resolution_error_rel(units: SensingUnits, rng, force_N: float) -> float:
 def readable_range(units: SensingUnits, rng, force_N, target_rel) -> tuple[float, float] | None:
     """The widest K_obj interval around the range's geometric mean where the
     resolution is at most ``target_rel`` (N/mm), or None when the mean is not."""
-    from tactcad.mechanics.resolution import best_unit_resolution_rel
+    from tactcad.mechanics.resolution import best_unit_resolution_rel, reads_within
 
     lo, hi = rng
     centre = math.sqrt(lo * hi)
     grid = np.geomspace(lo / KOBJ_SEARCH_FACTOR, hi * KOBJ_SEARCH_FACTOR, 801)
     grid = np.unique(np.append(grid, [lo, hi, centre]))
-    ok = best_unit_resolution_rel(units.read, grid, force_N) <= target_rel
+    ok = reads_within(best_unit_resolution_rel(units.read, grid, force_N), target_rel)
     i = int(np.searchsorted(grid, centre))
     if not ok[i]:
         return None
@@ -825,7 +825,8 @@ def design_kobj_budget(plan: Plan, fig: Figures, req: Requirements):
 
     return kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
                        DEFAULT_DELTA_T_K, fig.model, fig.k, fig.k_error,
-                       force_gauge=calibration_gauge(plan))
+                       force_gauge=calibration_gauge(plan),
+                       readable_within_rel=req.kobj_resolution_rel)
 
 
 def accuracy_budget(plan: Plan, fig: Figures, req: Requirements):
