@@ -135,9 +135,10 @@ def test_a_near_one_ratio_reads_no_kobj_in_the_budget_as_in_verify():
     units = sensing_units(plan, element_figures(plan))
     resolution, span = kobj_records(units, req, req.full_scale_force_N, "closed-form")
     assert not resolution["pass"] and span["predicted"] is None
-    # the design's own requirement, as every caller's budget reads it
+    # the design's own requirement, as every command's budget passes it
     b = kb.kobj_budget(plan, req.kobj_range_N_per_mm, req.full_scale_force_N,
-                       force_gauge=calibration_gauge(plan))
+                       force_gauge=calibration_gauge(plan),
+                       readable_within_rel=req.kobj_resolution_rel)
     verify_reads = reads_within(best_unit_resolution_rel(units.read, b.k_obj,
                                                          req.full_scale_force_N),
                                 req.kobj_resolution_rel)

@@ -1292,8 +1292,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         readable_within_rel: the largest relative K_obj resolution of a unit alone that
             reads K_obj (> 0; the requirement's ``kobj_resolution_rel``, as ``verify``
             judges the readable range): a unit reads none where its own is larger
-            (:func:`unit_reads`). None: the design's
-            (:func:`tactcad.studies.verification.requirements_of`).
+            (:func:`unit_reads`). None: no limit, every unit reads (the commands pass
+            the design's requirement, :func:`tactcad.studies.verification.requirements_of`).
 
     Returns:
         :class:`KobjBudget`.
@@ -1314,10 +1314,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         raise DesignError("delta_T_K", delta_T_K, "a number 0 ... 100 K")
     if not 2 <= points <= 101:
         raise DesignError("points", points, "an integer 2 ... 101")
-    if readable_within_rel is None:
-        from tactcad.studies.verification import requirements_of
-
-        readable_within_rel = requirements_of(plan).kobj_resolution_rel
+    if readable_within_rel is None:  # no requirement given: every unit reads
+        readable_within_rel = math.inf
     if not (readable_within_rel > 0):  # nan too
         raise DesignError("readable_within_rel", readable_within_rel, "a number > 0")
     if stiffness is None or errors is None:
