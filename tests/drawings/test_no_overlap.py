@@ -163,3 +163,64 @@ def test_balloon_leaders_are_ordered_so_that_none_crosses_its_neighbour():
     order = uncrossed(["lower", "upper"], row, anchors)
     assert order == ["upper", "lower"]
     assert not segments_cross(row[0], anchors[order[0]], row[1], anchors[order[1]])
+
+
+#: A stacked array the inverse design writes for a thin copper-beryllium sheet (``tactcad
+#: design --material CuBe-C17200-TF00 --columns 12``: M3 bolts, 2 mm sheet, 2.2 mm pitch),
+#: which holds every stacked column count; its terminal board has 4 x columns holes.
+THIN_SHEET_M3 = {"sheet.thickness_mm": 2.0, "array.pitch_mm": 2.2, "clamp.bolt_size": "M3",
+                 "clamp.bolt_spacing_mm": 6.6, "clamp.bridge_height_mm": 4.4,
+                 "element.arm_height_mm": 5.0, "element.base_height_mm": 10.4,
+                 "element.overall_length_mm": 34.0}
+
+
+def terminal_board_overlaps(columns: int, pitch_mm: float) -> list[str]:
+    """The overlaps on the terminal board's sheet alone (composed as the export composes
+    it, measured as ``tactcad check`` measures it) for :data:`THIN_SHEET_M3` at
+    ``columns`` columns and a board of terminal pitch ``pitch_mm``."""
+    from tactcad.catalogue.rig_catalogue import rig_parts
+    from tactcad.checks.sheet_overlap import layout_of_svg, sheet_overlaps
+    from tactcad.drawings.compose import compose
+    from tactcad.solids.build import build_part
+
+    overrides = {**THIN_SHEET_M3, "array.columns": columns,
+                 "arms.lengths_mm": [19.847] * 2 * columns}
+    rigs = default_rigs_data()
+    rigs["terminal_board"]["pitch_mm"] = pitch_mm
+    problems = Problems("board.toml")
+    plan, rig_design, _ = project_from_data(with_overrides(read_toml(DEFAULT_DESIGN, "design file"),
+                                                           overrides),
+                                            rigs, read_toml(DEFAULT_SCENES, "scenes file"),
+                                            problems, source="board.toml")
+    assert not problems
+    spec = rig_parts(plan, rig_design)["terminal_board"]
+    svg = compose(plan, spec, build_part(spec), 1).sheet.svg()
+    return [o.text() for o in sheet_overlaps(layout_of_svg(svg, "terminal_board.svg"))]
+
+
+@pytest.mark.parametrize("columns, pitch_mm", [(12, 2.54), (12, 1.7), (11, 2.54), (2, 2.54)],
+                         ids=["12_columns", "12_columns_finest_pitch", "11_columns", "2_columns"])
+def test_the_terminal_board_labels_its_holes_clear_at_every_stacked_column_count(columns, pitch_mm):
+    """A 2 x 12 array's board (48 holes at 2:1, a pitch narrower than a hole label) once
+    put five labels under other labels' leaders and failed its own drawings check."""
+    assert terminal_board_overlaps(columns, pitch_mm) == []
+
+
+@pytest.mark.parametrize("pitch_mm, scale", [(2.54, 2.0), (1.7, 2.0), (2.54, 5.0)])
+def test_hole_labels_of_a_close_row_stand_a_label_apart_with_both_ends_labelled(pitch_mm, scale):
+    from tactcad.drawings.dimensioning import labelled_holes
+    from tactcad.drawings.drawing import Hole2D
+    from tactcad.drawings.sheet import DIM_TEXT_MM, text_width
+
+    ordered = [Hole2D(k * pitch_mm, y, 1.0) for y in (0.0, pitch_mm) for k in range(24)]
+    numbers = labelled_holes(ordered, scale)
+    label_mm = text_width("H48", DIM_TEXT_MM)
+    for row in (range(1, 25), range(25, 49)):
+        shown = [i for i in numbers if i in row]
+        assert shown[0] == row[0] and shown[-1] == row[-1]
+        gaps = [(ordered[b - 1].x - ordered[a - 1].x) * scale for a, b in zip(shown, shown[1:])]
+        assert min(gaps) > label_mm
+        # no stretch left bare that had room for another label
+        assert max(gaps) < 2 * (label_mm + pitch_mm * scale)
+    if pitch_mm * scale > label_mm + 1.0:
+        assert numbers == list(range(1, 49))

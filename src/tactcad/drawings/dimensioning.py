@@ -11,8 +11,8 @@ from typing import Iterator
 from tactcad.drawings.drawing import (FIRST_TIER, TABLE_BLOCK_GAP, TABLE_COLS, TABLE_ROW, TIER,
                                       Drawing, Hole2D, table_box)
 from tactcad.drawings.frame import FRAME, TITLE_W
-from tactcad.drawings.sheet import (DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet, Spot, fmt_mm,
-                                    leader_spot, text_width)
+from tactcad.drawings.sheet import (CLEARANCE_MM, DIM_TEXT_MM, LABEL_TEXT_MM, Point, Sheet,
+                                    Spot, fmt_mm, leader_spot, text_width)
 from tactcad.drawings.views import ISO_5455_SCALES, View, scale_text
 from tactcad.geometry.profile import Arc
 
@@ -116,9 +116,44 @@ def clear_label(sh: Sheet, centre: Point, radius: float, text: str, id: str) -> 
     sh.label("dimensions", text, feature_label_spots(centre, radius, text), id=id)
 
 
+def labelled_holes(ordered: list[Hole2D], scale: float) -> list[int]:
+    """Which holes of a hole table are labelled on the view: in each row (one
+    y) every hole whose label has room beside its labelled neighbour's, the
+    row's first and last always. A row at a pitch narrower than a label (a
+    terminal board's 24 pairs at 2:1) labels every second or third hole, so
+    its labels stand side by side rather than in ever more leader tiers that
+    run out of room.
+
+    Args:
+        ordered: the holes in table order (by y, then x; model mm).
+        scale: the view's scale (paper mm per model mm).
+    Returns:
+        The labelled holes' table numbers (1 = the first of ``ordered``), ascending.
+    """
+    # the widest label plus the room a label keeps clear on either side
+    need = text_width(f"H{len(ordered)}", DIM_TEXT_MM) + 2 * CLEARANCE_MM
+    rows: dict[float, list[int]] = {}
+    for i, h in enumerate(ordered, start=1):
+        rows.setdefault(round(h.y, 9), []).append(i)
+    out: list[int] = []
+    for numbers in rows.values():
+        kept = [numbers[0]]
+        for i in numbers[1:]:
+            if (ordered[i - 1].x - ordered[kept[-1] - 1].x) * scale >= need:
+                kept.append(i)
+        last = numbers[-1]
+        if kept[-1] != last:  # the row's end is labelled; the one before it makes room
+            if len(kept) > 1 and (ordered[last - 1].x - ordered[kept[-1] - 1].x) * scale < need:
+                kept.pop()
+            kept.append(last)
+        out += kept
+    return sorted(out)
+
+
 def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, float]) -> None:
-    """Coordinate table of the holes (ISO 129-1 tabular dimensioning), each
-    hole labelled on the view, coordinates from the marked origin."""
+    """Coordinate table of the holes (ISO 129-1 tabular dimensioning), the
+    holes labelled on the view (all those with room, :func:`labelled_holes`),
+    coordinates from the marked origin."""
     sh = d.sheet
     o = view.paper(*datum)
     sh.line("dimensions", (o[0] - 3, o[1]), (o[0] + 3, o[1]))
@@ -126,7 +161,8 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     sh.circle("dimensions", o, 1.2)
     clear_label(sh, o, 1.2, "0,0", "hole-origin")
     ordered = sorted(holes, key=lambda h: (h.y, h.x))
-    for i, h in enumerate(ordered, start=1):
+    for i in labelled_holes(ordered, view.scale):
+        h = ordered[i - 1]
         clear_label(sh, view.paper(h.x, h.y), h.d / 2 * view.scale, f"H{i}", f"hole-label-{i}")
     x0, y0, _, _ = table_box(d)
     per_block, numbered = d.table_block_rows, list(enumerate(ordered, start=1))
