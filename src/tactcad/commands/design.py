@@ -1565,7 +1565,8 @@ def design_report(result, verify: str, progress=None, margins: list[dict] | None
                         "K_m_N_per_mm": t.k_m, "K_r_N_per_mm": t.k_r},
             "material": plan.material.grade or plan.material.name,
             "web_thickness_mm": g.web_thickness_mm, "web_changed": result.web_changed,
-            "notch_radius_mm": g.notch_radius_mm, "overall_length_mm": g.overall_length_mm,
+            "notch_radius_mm": g.notch_radius_mm, "notch_radius_changed": result.notch_changed,
+            "overall_length_mm": g.overall_length_mm,
             "pitch_mm": plan.pitch_mm, "references": list(result.references),
             "layout_changes": [{"field": f, "base": a, "chosen": b}
                                for f, a, b in result.layout_changes],
@@ -1656,7 +1657,8 @@ def print_report(r: dict) -> None:
           f" -> K_r {t['K_r_N_per_mm']:.4g}, K_m {t['K_m_N_per_mm']:.4g} N/mm")
     print(f"material {r['material']}, web {r['web_thickness_mm']:g} mm"
           f"{' (changed)' if r['web_changed'] else ' (kept)'}, notch radius "
-          f"{r['notch_radius_mm']:g} mm, overall length {r['overall_length_mm']:g} mm, pitch "
+          f"{r['notch_radius_mm']:g} mm{' (changed)' if r.get('notch_radius_changed') else ''}"
+          f", overall length {r['overall_length_mm']:g} mm, pitch "
           f"{r['pitch_mm']:g} mm; references: elements {', '.join(map(str, r['references']))}")
     if r["layout_changes"]:
         print("layout searched, changed from the base design: " + ", ".join(

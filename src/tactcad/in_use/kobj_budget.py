@@ -412,10 +412,32 @@ def web_tolerance_k_change(geometry, material) -> tuple[float, float]:
     change = []
     for sign in (1, -1):
         t = geometry.web_thickness_mm + sign * geometry.web_tolerance_mm
-        k = estimate("closed-form", replace(geometry, web_thickness_mm=t),
-                     material).stiffness_N_per_mm if t > 0 else k0
+        k = _tolerance_end_k(geometry, material, t) if t > 0 else k0
         change.append(abs(k / k0 - 1.0))
     return change[0], change[1]
+
+
+def _tolerance_end_k(geometry, material, web_mm: float) -> float:
+    """Closed-form K (N/mm) of ``geometry`` cut at ``web_mm`` (an end of its web tolerance).
+    A correction range warning it gives names that web: the element as drawn may sit at
+    the range's end (t/R = 1) while its tolerance end lies past it."""
+    import warnings
+
+    from tactcad.mechanics.correction import CorrectionRangeWarning
+    from tactcad.mechanics.ladder import estimate
+
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always", CorrectionRangeWarning)
+        k = estimate("closed-form", replace(geometry, web_thickness_mm=web_mm),
+                     material).stiffness_N_per_mm
+    for w in said:
+        if issubclass(w.category, CorrectionRangeWarning):
+            warnings.warn(f"an element at the end of its web tolerance (web "
+                          f"{web_mm:g} mm, drawn {geometry.web_thickness_mm:g} mm; the K band "
+                          f"`verify` reads): {w.message}", CorrectionRangeWarning, stacklevel=2)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return k
 
 
 def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribution:

@@ -371,7 +371,8 @@ def apply_correction(K_eb, t_over_R, correction: Correction = IDENTITY, *, width
     if warn and out:
         err = correction.error_estimate_rel(t_over_R, width_ratio, poisson_ratio, *shares)
         warn_outside(correction, out, int(np.count_nonzero(outside)), int(K.size),
-                     float(np.max(np.broadcast_to(err, K.shape)[outside])))
+                     float(np.max(np.broadcast_to(err, K.shape)[outside])),
+                     values={k: np.asarray(coords[k], float)[mask] for k, mask in out.items()})
     return K, ~outside
 
 
@@ -385,15 +386,25 @@ RANGE_WORDS = {"t_over_R": "web thickness / notch radius",
                "arm_over_arm_height": "arm length / arm height"}
 
 
+def _values_said(values: np.ndarray) -> str:
+    """The values a coordinate took outside its range: one, or the span of several."""
+    lo, hi = float(np.min(values)), float(np.max(values))
+    return f"{lo:.4g}" if f"{lo:.4g}" == f"{hi:.4g}" else f"{lo:.4g} ... {hi:.4g}"
+
+
 def warn_outside(correction: Correction, out: Mapping[str, np.ndarray], n_out: int, n: int,
-                 error_rel: float) -> None:
+                 error_rel: float, values: Mapping[str, np.ndarray] | None = None) -> None:
     """Warn that ``n_out`` of ``n`` points leave the fitted range: each coordinate left by
-    name, in words (:data:`RANGE_WORDS`) and with its range, the estimated error and how to
-    solve without the correction. The fit's own record (``correction.source``) stays in the
-    data file: it names the studies that made it, not what a user acts on."""
+    name, in words (:data:`RANGE_WORDS`), with the values it took outside (``values``, by
+    name; a point just past an end reads as that end when only the range is said) and its
+    range, the estimated error and how to solve without the correction. The fit's own
+    record (``correction.source``) stays in the data file: it names the studies that made
+    it, not what a user acts on."""
     fr = correction.fit_range
-    which = ", ".join(f"{k} ({RANGE_WORDS.get(k, k)}) {getattr(fr, k)[0]:.4g} ... "
-                      f"{getattr(fr, k)[1]:.4g}" for k in out)
+    values = values or {}
+    which = ", ".join(f"{k} ({RANGE_WORDS.get(k, k)}) "
+                      + (f"{_values_said(values[k])}, fitted " if np.size(values.get(k)) else "")
+                      + f"{getattr(fr, k)[0]:.4g} ... {getattr(fr, k)[1]:.4g}" for k in out)
     warnings.warn(
         f"closed-form stiffness correction used outside its fitted range at {n_out} of {n} "
         f"points ({which}); estimated error up to {100 * error_rel:.2g} % (the correction is "

@@ -142,19 +142,62 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
         el["arm_height_mm"] = round(t + R + ARM_HEIGHT_CLEARANCE_MM, 6)
         if isinstance(why, dict):
             why["element.arm_height_mm"] = (
-                f"Raised to web + notch radius + {ARM_HEIGHT_CLEARANCE_MM:g} mm so the notch "
-                "opens below the arm.")
+                f"Raised to {el['arm_height_mm']:g} mm, the web plus the notch radius plus a "
+                f"{1000 * ARM_HEIGHT_CLEARANCE_MM:g} um clearance, so the notch opens below "
+                "the arm.")
     fit_to_bolt(out)
     arms = out["arms"]["lengths_mm"]
     if arms and all(isinstance(a, (int, float)) for a in arms):
         need = required_overall_length_mm(out, max(arms), R)
         if el["overall_length_mm"] < need:
-            el["overall_length_mm"] = math.ceil(need / LENGTH_STEP_MM) * LENGTH_STEP_MM
-            if isinstance(why, dict):
-                why["element.overall_length_mm"] = (
-                    f"Raised to {el['overall_length_mm']:g} mm so the clamped base behind the "
-                    f"longest arm ({max(arms):g} mm) still holds the bolt pattern.")
+            set_overall_length(out, math.ceil(need / LENGTH_STEP_MM) * LENGTH_STEP_MM)
     return out
+
+
+def overall_length_reason(overall_length_mm: float, longest_arm_mm: float) -> str:
+    """Why the overall element length is what it is: the shortest, in
+    :data:`LENGTH_STEP_MM` steps, whose clamped base behind the longest arm holds the bolt
+    pattern (both in mm, as the design file writes them)."""
+    # the step is said in words: a reason quotes in mm only dimensions the file holds
+    return (f"tactcad design: {overall_length_mm:g} mm, the shortest (in half-millimetre "
+            f"steps) whose clamped base behind the longest arm ({longest_arm_mm:g} mm) still "
+            "holds the bolt pattern.")
+
+
+def set_overall_length(data: dict[str, Any], overall_length_mm: float) -> None:
+    """Write, in place, the overall element length (mm) and its reason under
+    ``[assumptions]`` (:func:`overall_length_reason`), quoting the longest arm the tables
+    hold now: the arms are set first."""
+    data["element"]["overall_length_mm"] = float(overall_length_mm)
+    why = data.get("assumptions")
+    if isinstance(why, dict):
+        why["element.overall_length_mm"] = overall_length_reason(
+            float(overall_length_mm), max(data["arms"]["lengths_mm"]))
+
+
+def notch_radius_reason(notch_radius_mm: float) -> str:
+    """Why the inverse design's notch radius (mm) differs from its base's: it follows a
+    web thicker than the base's radius (the search's rule, :func:`web_candidates`)."""
+    return (f"tactcad design: raised to {notch_radius_mm:g} mm, the chosen web's thickness: "
+            "the notch radius is kept at least the web (t/R <= 1, the range the closed form's "
+            "fem3d correction was fitted over), so it follows a web thicker than the base "
+            "design's radius.")
+
+
+def set_notch_radius(data: dict[str, Any], notch_radius_mm: float) -> bool:
+    """Write, in place, the notch radius (mm) the web search chose; where it differs
+    from the tables' own, its reason too (:func:`notch_radius_reason`).
+
+    Returns:
+        True when the radius changed.
+    """
+    el = data["element"]
+    if math.isclose(float(el["notch_radius_mm"]), notch_radius_mm, rel_tol=1e-12):
+        return False
+    el["notch_radius_mm"] = float(notch_radius_mm)
+    data.setdefault("assumptions", {})["element.notch_radius_mm"] = \
+        notch_radius_reason(float(notch_radius_mm))
+    return True
 
 
 #: Dimensions raised to hold a bolt are rounded up to this step (mm).
@@ -264,9 +307,12 @@ def fit_to_bolt(data: dict[str, Any]) -> None:
         if float(data[section][key]) < least - 1e-9:
             data[section][key] = _up(least)
             if isinstance(why, dict):
+                # only the base height reads the arm height: the other reasons do not
+                # quote it (a later, taller arm would leave them quoting a stale one)
+                below = f" below a {arm_h:g} mm arm" if key == "base_height_mm" else ""
                 why[f"{section}.{key}"] = (
                     f"tactcad design: raised to {data[section][key]:g} mm, the least that holds "
-                    f"the {bolt.size} clamp bolt below a {arm_h:g} mm arm.")
+                    f"the {bolt.size} clamp bolt{below}.")
 
 
 # ---------------------------------------------------------------------------
@@ -924,6 +970,9 @@ class InverseDesign:
     #: The K_obj factor the units see through the tissue coupling (1: no tissue). It differs
     #: from ``targets.kobj_seen_factor`` (the centring used) when eq. 2's centring was kept.
     coupling_seen_factor: float = 1.0
+    #: The notch radius differs from the tables the search started from (it follows a
+    #: thicker web: :func:`set_notch_radius`).
+    notch_changed: bool = False
 
 
 #: The binding limits are those of a force this much above the largest feasible one.
@@ -945,6 +994,21 @@ def arm_height_for(longest_arm_mm: float, arm_height_mm: float) -> float | None:
     need = math.ceil(longest_arm_mm / MAX_ARM_OVER_HEIGHT * 10 - 1e-9) / 10
     need = min(need, MAX_ARM_HEIGHT_MM)
     return need if need > arm_height_mm + 1e-9 else None
+
+
+def arm_height_reason(arm_height_mm: float, longest_arm_mm: float) -> str:
+    """Why the inverse design raised the arm height (mm): the longest arm (mm, as written)
+    within a/h <= :data:`MAX_ARM_OVER_HEIGHT`, or, where the tallest arm the file allows
+    cannot hold it, that height and the ratio left."""
+    ratio = longest_arm_mm / arm_height_mm
+    if ratio <= MAX_ARM_OVER_HEIGHT + 1e-9:
+        return (f"tactcad design: raised to {arm_height_mm:g} mm so the longest arm "
+                f"({longest_arm_mm:g} mm) keeps arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, "
+                "inside the range the closed form's fem3d correction was fitted over.")
+    return (f"tactcad design: raised to {arm_height_mm:g} mm, the tallest arm the design file "
+            f"allows: the longest arm ({longest_arm_mm:g} mm) leaves arm / arm height "
+            f"{ratio:.3g}, beyond the {MAX_ARM_OVER_HEIGHT:g} the closed form's fem3d "
+            "correction was fitted over.")
 
 
 def _mentions_paper(text: str) -> bool:
@@ -1262,7 +1326,7 @@ def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "
     """:func:`design_from_tables` for the stiffnesses of ``targets`` as they stand."""
     base_web = float(data["element"]["web_thickness_mm"])
     carried = dict(data.get("assumptions", {}))  # the base's reasons, checked once values are set
-    refusal = None
+    refusal, height_raised = None, False
     for _ in range(ARM_HEIGHT_ROUNDS):
         plan = plan_from_dict(data, source="<inverse design>")
         with range_warnings_unsaid():  # the candidates, not the design written (its own warn)
@@ -1279,10 +1343,7 @@ def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "
             break
         data["element"]["arm_height_mm"] = raised
         fit_to_bolt(data)  # a taller arm asks a taller base below it
-        data.setdefault("assumptions", {})["element.arm_height_mm"] = (
-            f"tactcad design: raised to {raised:g} mm so the longest arm ({longest:g} mm) keeps "
-            f"arm / arm height <= {MAX_ARM_OVER_HEIGHT:g}, inside the range the closed form's "
-            "fem3d correction was fitted over.")
+        height_raised = True  # its reason quotes the arms the last round chooses
     if refusal is not None:
         raise refusal
     f_max = max_full_scale_force_N(search, targets.full_scale_force_N)
@@ -1296,11 +1357,15 @@ def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "
     refs = reference_elements(plan.rows, plan.columns)
     arms = [a_r if n in refs else a_m for n in range(1, len(plan.slots) + 1)]
     web_changed = not math.isclose(t, base_web)
+    data["arms"]["lengths_mm"] = [float(a) for a in arms]
+    if height_raised:
+        data.setdefault("assumptions", {})["element.arm_height_mm"] = arm_height_reason(
+            float(data["element"]["arm_height_mm"]), max(arms))
+    notch_changed = set_notch_radius(data, R)
     if shortest_element:
         need = required_overall_length_mm(data, max(arms), R)
-        data["element"]["overall_length_mm"] = math.ceil(need / LENGTH_STEP_MM - 1e-9) \
-            * LENGTH_STEP_MM
-    data = design_variant(data, web_mm=t, notch_radius_mm=R, arms_mm=arms)
+        set_overall_length(data, math.ceil(need / LENGTH_STEP_MM - 1e-9) * LENGTH_STEP_MM)
+    data = design_variant(data, web_mm=t)
     lo, hi = targets.k_obj_range_N_per_mm
     data["design"] = {"name": name, "description": (
         f"Inverse design: K_r/K_m = {targets.kr_over_km:g} for K_obj {lo:g}-{hi:g} N/mm, "
@@ -1323,7 +1388,8 @@ def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "
     data["requirements"] = requirements_table(targets, data)
     new_plan = plan_from_dict(data, source="<inverse design>")
     return InverseDesign(targets, data, new_plan, refs, web_changed, a_r, a_m,
-                         max_full_scale_force_N=f_max, binding_limits=bind)
+                         max_full_scale_force_N=f_max, binding_limits=bind,
+                         notch_changed=notch_changed)
 
 
 def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, Any]:
