@@ -427,3 +427,100 @@ def test_a_projects_commands_name_its_jaw_file_from_its_folder(tmp_path):
     words = shlex.split(row["command"])
     assert words[words.index("--jaw") + 1] == "lab.toml"
     assert words[words.index("--out") + 1] == "../lab_atlas_monolithic_comb_17_4ph_h900_3"
+
+
+#: Where a stop reaches a run: while its cluster starts, after its judging stopped with
+#: nothing finished, while its cluster closes, and while its files are written.
+STOP_MOMENTS = ("cluster start", "judging", "cluster close", "files written")
+ATLAS_FILES = {"atlas.parquet", "atlas_front.svg", "atlas.json"}
+
+
+@pytest.mark.parametrize("moment", STOP_MOMENTS)
+def test_a_stop_at_any_moment_ends_130_in_one_line_with_the_whole_file_set(
+        tmp_path, monkeypatch, moment):
+    import contextlib
+    import signal
+
+    import tactcad.commands.atlas as atlas_cmd
+    import tactcad.studies.design_atlas as design_atlas
+    import tactcad.studies.sweeps as sweeps
+
+    refused = [verdict(0, "mems-die", False, 0.01, 5.0, float("nan"))]
+
+    class Client:
+        def nthreads(self):
+            return {"worker": 1}
+
+    @contextlib.contextmanager
+    def cluster(scheduler, workers):  # the stop raised where Ctrl-C lands
+        if moment == "cluster start":
+            raise KeyboardInterrupt
+        yield Client()
+        if moment == "cluster close":
+            raise KeyboardInterrupt
+
+    def judging(atlas, points, client, batch_size=1, **kwargs):
+        # run_atlas's own answer to a stop: what finished (nothing), not complete
+        return ([], False) if moment == "judging" else (refused, True)
+
+    drawn = atlas_cmd.front_figure
+
+    def drawn_under_a_stop(*args, **kwargs):
+        signal.raise_signal(signal.SIGINT)  # Ctrl-C between the table and the figure
+        drawn(*args, **kwargs)
+
+    monkeypatch.setattr(sweeps, "dask_client", cluster)
+    monkeypatch.setattr(design_atlas, "run_atlas", judging)
+    if moment == "files written":
+        monkeypatch.setattr(atlas_cmd, "front_figure", drawn_under_a_stop)
+    out = tmp_path / "out"
+    r = run_cli(*DIE_ATLAS[:-1], "--no-cache", "--out", out)
+    assert r.returncode == 130, r.stdout + r.stderr
+    assert "Traceback" not in r.stdout + r.stderr
+    assert {p.name for p in out.iterdir()} == ATLAS_FILES  # every file of the set
+    summary = json.loads((out / "atlas.json").read_text(encoding="utf-8"))
+    figure = (out / "atlas_front.svg").read_text(encoding="utf-8")
+    if moment == "files written":  # judged whole; the stop waited for the last file
+        assert summary["complete"] is True and summary["records"] == 1
+        assert "interrupted; this run had already written" in r.stderr
+        return
+    assert summary["complete"] is False
+    assert "(stopped: the points that finished are kept)" in r.stdout
+    if moment == "cluster close":  # what finished before the stop is kept
+        assert summary["records"] == 1 and "no feasible design among the 1" in figure
+    else:
+        assert summary["records"] == 0 and "no target point was judged" in figure
+
+
+@pytest.mark.slow  # a local cluster started in a new interpreter (about 10 s)
+def test_ctrl_c_during_a_real_atlas_ends_130_without_a_traceback_or_litter(tmp_path):
+    import signal
+
+    src = str(Path(tactcad.__file__).resolve().parents[1])
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    env = {**os.environ, "PYTHONPATH": src, "TMPDIR": str(scratch)}
+    out = tmp_path / "out"
+    # 2000 die points take over a minute: the stop comes long before their end
+    argv = [sys.executable, "-m", "tactcad.cli", "atlas", "--jaw", "5", "--points", "2000",
+            "--workers", "1", "--no-cache", "--out", str(out)]
+    p = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         text=True, cwd=tmp_path,
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    err = []
+    try:
+        for line in p.stderr:  # the first batch done: the cluster is up and judging
+            err.append(line)
+            if "batches" in line:
+                p.send_signal(signal.SIGINT)
+                break
+        stdout, rest = p.communicate(timeout=60)
+    finally:
+        p.kill()
+    err.append(rest)
+    text = stdout + "".join(err)
+    assert p.returncode == 130, text
+    assert "Traceback" not in text and "distributed." not in text
+    assert "(stopped: the points that finished are kept)" in stdout
+    assert {f.name for f in out.iterdir()} == ATLAS_FILES
+    assert list(scratch.iterdir()) == []  # Dask's scratch space went with its cluster

@@ -146,3 +146,32 @@ def test_the_default_grid_is_the_designs_own_not_the_papers_study(capsys):
     words = " ".join(capsys.readouterr().out.split())
     assert "design's shortest arm to its longest" in words and "design's web" in words
     assert "[4.0, 5.0" not in words
+
+
+def test_a_local_cluster_leaves_nothing_in_the_temporary_folder(tmp_path, monkeypatch):
+    import tempfile
+
+    from tactcad.studies.sweeps import dask_client
+
+    monkeypatch.setenv("TMPDIR", str(tmp_path))
+    monkeypatch.setattr(tempfile, "tempdir", None)  # asked again: TMPDIR
+    with dask_client(workers=1) as client:
+        assert client.submit(sum, [1, 2]).result() == 3
+        assert list(tmp_path.iterdir())  # the scratch space is in the temporary folder
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("terminal", [False, True])
+def test_a_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path, monkeypatch, terminal):
+    import tactcad.studies.sweeps as sweeps
+    from conftest import run_cli
+
+    if terminal:  # stderr as a terminal's (run_cli's own stderr is a buffer: none)
+        monkeypatch.setattr(sweeps, "stderr_is_terminal", lambda: True)
+    r = run_cli("sweep", "grid", "--workers", "1", "--webs", "0.3", "0.35", "--arms", "5",
+                "--no-cache", "--out", tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert ("Completed" in r.stderr) is terminal
+    if not terminal:  # plain lines a log keeps one by one
+        assert "\r" not in r.stderr
+        assert "sweep: 2/2 points" in r.stderr.splitlines()

@@ -16,6 +16,7 @@ from tactcad.commands.design import jaw_classes, jaw_of
 from tactcad.commands.options import count, material_grade_name, number
 from tactcad.commands.tolerance import add_cluster_args
 from tactcad.errors import DesignError
+from tactcad.stopping import stop_signals_held
 from tactcad.studies.atlas_files import (  # noqa: F401  (the command's names)
     FIGURE_NAME, PROJECT_ATLAS_FOLDER, SUMMARY_NAME, TABLE_NAME, point_title, read_table,
     span, write_table)
@@ -248,16 +249,32 @@ def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
     seconds = time.perf_counter() - start
     if args.project is not None:  # the front's commands are pasted in the project's folder
         records = project_records(records, args.project, jaw)
-    write_table(out / TABLE_NAME, records, {**inputs, "complete": complete})
     summary = atlas_summary(records, inputs, seconds, reused, complete, out)
-    front_figure(records, summary["front"], out / FIGURE_NAME, jaw)
-    (out / SUMMARY_NAME).write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n",
-                                    encoding="utf-8")
-    if args.json:
-        print(json.dumps(summary, indent=2, allow_nan=False))
-    else:
-        print_summary(summary)
+    # the files are one set: a stop while they are written waits for the last of them
+    with stop_signals_held(block_in_children=False):
+        write_atlas_files(out, records, summary, {**inputs, "complete": complete}, jaw)
+        if args.json:
+            print(json.dumps(summary, indent=2, allow_nan=False))
+        else:
+            print_summary(summary)
     return 0 if complete else 130
+
+
+def write_atlas_files(out: Path, records: list[dict], summary: dict, inputs: dict,
+                      jaw: str) -> None:
+    """The atlas's table, figure and summary written into ``out``, each atomically
+    (:mod:`tactcad.atomic`).
+
+    Args:
+        out: the ``--out`` folder. records: every verdict. summary: :func:`atlas_summary`.
+        inputs: the table's metadata. jaw: ``--jaw``, for the figure's title.
+    """
+    from tactcad.atomic import write_bytes_atomic
+
+    write_table(out / TABLE_NAME, records, inputs)
+    front_figure(records, summary["front"], out / FIGURE_NAME, jaw)
+    write_bytes_atomic(out / SUMMARY_NAME,
+                       (json.dumps(summary, indent=2, allow_nan=False) + "\n").encode("utf-8"))
 
 
 def project_records(records: list[dict], design: str, jaw: str) -> list[dict]:
@@ -382,7 +399,9 @@ def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[di
             single-threaded), ``--batch`` and the progress options.
 
     Returns:
-        (records, True when every batch ran; False when Ctrl-C stopped it).
+        (records, True when every batch ran; False when a stop (Ctrl-C, SIGTERM) came
+        while the cluster started, judged or closed: the records that finished, none
+        when it came before the first).
 
     Raises:
         ClusterError: nothing answers at ``--scheduler``.
@@ -391,10 +410,15 @@ def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[di
     from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client
 
     say = progress_from_args(args)
-    with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
-        size = args.batch or auto_batch(len(points), sum(client.nthreads().values()))
-        return run_atlas(atlas, points, client, size,
-                         progress=lambda done, total: say(f"atlas: {done}/{total} batches"))
+    finished: tuple[list[dict], bool] = ([], False)
+    try:
+        with dask_client(args.scheduler, args.workers or LOCAL_WORKERS) as client:
+            size = args.batch or auto_batch(len(points), sum(client.nthreads().values()))
+            finished = run_atlas(atlas, points, client, size, progress=lambda done, total:
+                                 say(f"atlas: {done}/{total} batches"))
+    except KeyboardInterrupt:  # raised once the cluster is closed: a stopped atlas
+        return finished[0], False
+    return finished
 
 
 def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: bool,
@@ -472,10 +496,13 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     Each feasible point's K_obj span against its rated force, coloured by product and
     material; the front ringed; the refused points grey crosses; each product and
     material's feasible region bounded above by a dashed step line in its colour
-    (:func:`tactcad.studies.design_atlas.feasible_boundary`).
+    (:func:`tactcad.studies.design_atlas.feasible_boundary`). With no feasible point (a
+    stopped run's) the figure says so (:func:`empty_figure_note`); with no point at all
+    its axes are linear. Written atomically.
     """
     from matplotlib.figure import Figure
 
+    from tactcad.atomic import write_atomic, write_bytes_atomic
     from tactcad.studies.design_atlas import feasible_boundary
 
     fig = Figure(figsize=(7.0, 4.8))
@@ -496,8 +523,12 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
                 color=dots.get_facecolor()[0], label=f"feasible boundary, {label[1]}")
     ax.scatter([r["full_scale_force_N"] for r in front], [span(r) for r in front], s=70,
                facecolors="none", edgecolors="k", label="Pareto front")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    if records:  # a log axis of nothing is refused (a run stopped before any point)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+    note = empty_figure_note(records)
+    if note:
+        ax.text(0.5, 0.5, note, transform=ax.transAxes, ha="center", va="center")
     ax.set_xlabel("rated full-scale force (N)")
     ax.set_ylabel("K_obj span, high / low")
     ax.set_title(f"design atlas of the jaw {Path(jaw).name}")
@@ -505,11 +536,28 @@ def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -
     path.parent.mkdir(parents=True, exist_ok=True)
     kind = path.suffix.lstrip(".").lower() or "svg"
     if kind != "svg":
-        fig.savefig(path, format=kind, dpi=110)
+        write_atomic(path, lambda tmp: fig.savefig(tmp, format=kind, dpi=110))
         return
     buffer = io.StringIO()
     fig.savefig(buffer, format="svg")
-    path.write_text(with_point_titles(buffer.getvalue(), hover), encoding="utf-8")
+    write_bytes_atomic(path, with_point_titles(buffer.getvalue(), hover).encode("utf-8"))
+
+
+def empty_figure_note(records: list[dict]) -> str | None:
+    """What the atlas's figure says when it has no feasible point to draw (a run stopped
+    before any point finished, or before a feasible one did), else None.
+
+    Args:
+        records: every verdict drawn.
+
+    Returns:
+        The note, or None when some point is feasible.
+    """
+    if not records:
+        return "no target point was judged"
+    if not any(r["feasible"] for r in records):
+        return f"no feasible design among the {len(records)} verdicts"
+    return None
 
 
 def with_point_titles(svg: str, hover: Mapping[str, list[dict]]) -> str:

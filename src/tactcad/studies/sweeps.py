@@ -8,7 +8,8 @@ cores), or an existing cluster given by its scheduler address
 (``tcp://HOST:PORT``), whose workers must import the same tactcad. A point's
 result depends on the point only, and results are gathered in point order,
 so a sweep gives the same numbers on any cluster. A text progress bar
-(``distributed.progress``) goes to stderr.
+(``distributed.progress``) goes to stderr on a terminal, plain progress lines
+otherwise.
 
 * :func:`design_grid`: K, gauge strain and error estimate at any ladder
   level over web x arm (x notch radius), CSV and a design chart (K against
@@ -28,7 +29,9 @@ import csv
 import logging
 import math
 import re
+import shutil
 import sys
+import tempfile
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -125,6 +128,11 @@ def dask_client(scheduler: str | None = None, workers: int = LOCAL_WORKERS,
                 threads_per_worker: int = THREADS_PER_WORKER) -> Iterator[Any]:
     """A ``distributed.Client``: on a new LocalCluster, or on ``scheduler``.
 
+    A LocalCluster keeps its workers' scratch space in a new temporary folder, removed
+    when it closes (Dask's default leaves ``dask-scratch-space`` and its lock files in
+    the system's temporary folder), and is started and closed whole
+    (:func:`whole_local_cluster`).
+
     Args:
         scheduler: address of an existing scheduler (``tcp://HOST:PORT``);
             ``None`` starts a LocalCluster of ``workers`` processes.
@@ -134,9 +142,11 @@ def dask_client(scheduler: str | None = None, workers: int = LOCAL_WORKERS,
     Raises:
         DesignError: a malformed address or worker count.
         ClusterError: nothing answers at ``scheduler`` within 10 s.
+        KeyboardInterrupt: a stop while the LocalCluster started or closed, raised once
+            it is closed.
     """
     import dask
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     if scheduler:
         address = check_scheduler_address(scheduler)
@@ -154,28 +164,112 @@ def dask_client(scheduler: str | None = None, workers: int = LOCAL_WORKERS,
         raise DesignError("--workers", workers, "an integer 1 ... 64")
     env = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}), **SINGLE_THREAD_ENV,
                **WORKER_ALLOCATOR_ENV)
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": env}):
-        with LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker,
-                          processes=True, dashboard_address=None,
-                          silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
-            yield client
+    scratch = tempfile.mkdtemp(prefix=SCRATCH_PREFIX)
+    # the workers' scratch space (and its lock files) in a folder of this run, not TMPDIR's
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": env,
+                          "temporary-directory": scratch}):
+        try:
+            with whole_local_cluster(workers, threads_per_worker, scratch) as client:
+                yield client
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+
+
+#: Level of Dask's own log lines in a local cluster (its scheduler and its workers): none
+#: below CRITICAL. A worker closed while its task runs (a stopped run) logs its lost
+#: scheduler as an ERROR with a traceback, a race within Dask's close; a task's own error
+#: reaches the run as the exception its result raises, so the log adds nothing.
+DASK_LOG_LEVEL = logging.CRITICAL
+#: Name prefix of a local cluster's scratch folder (removed when the cluster closes).
+SCRATCH_PREFIX = "tactcad-dask-"
+
+
+@contextlib.contextmanager
+def whole_local_cluster(workers: int, threads_per_worker: int,
+                        scratch: str) -> Iterator[Any]:
+    """A ``distributed.Client`` on a new LocalCluster, started and closed whole.
+
+    A stop (Ctrl-C, SIGTERM) that arrives while the cluster starts or closes is held until
+    it has (:func:`tactcad.stopping.stop_signals_held`): raised in the middle of either, it
+    left a cluster half made or half closed, which Dask's exit then closed with an
+    ``AssertionError`` traceback and whose workers logged their lost scheduler.
+
+    Args:
+        workers: worker processes. threads_per_worker: threads per worker.
+        scratch: the workers' local directory (a folder the caller removes).
+
+    Raises:
+        KeyboardInterrupt: a stop held while the cluster started, once it is closed again.
+    """
+    from distributed import Client, LocalCluster
+
+    from tactcad.stopping import stop_signals_held
+
+    cluster = client = None
+    try:
+        # the workers are Dask's processes: their start-up does not unblock the signals
+        with stop_signals_held(block_in_children=False):
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker,
+                                   processes=True, dashboard_address=None,
+                                   local_directory=scratch, silence_logs=DASK_LOG_LEVEL)
+            client = Client(cluster)
+        yield client
+    finally:
+        with stop_signals_held(block_in_children=False):
+            if client is not None:
+                client.close()
+            if cluster is not None:
+                cluster.close()
 
 
 def dask_mapper(client, progress: bool = True) -> Callable:
-    """A ``map(func, items)`` replacement that runs on ``client``: results
-    in item order, a text progress bar on stderr while it waits."""
+    """A ``map(func, items)`` replacement that runs on ``client``: results in item order;
+    while it waits, with ``progress``, Dask's progress bar on stderr when stderr is a
+    terminal, else a plain line at every tenth of the items done
+    (:func:`progress_lines`): the bar redraws itself with carriage returns, which a log
+    file or a pipe keeps as one long line."""
 
     def mapper(func: Callable, items: Iterable) -> list:
         futures = client.map(func, list(items), pure=False)
-        if progress and futures:
+        if progress and futures and stderr_is_terminal():
             from distributed import progress as progress_bar
 
             with contextlib.redirect_stdout(sys.stderr):
                 progress_bar(futures)
                 print(file=sys.stderr)
+        elif progress and futures:
+            progress_lines(futures)
         return client.gather(futures)
 
     return mapper
+
+
+def stderr_is_terminal() -> bool:
+    """True when stderr is a terminal (a closed or replaced stream without ``isatty`` is not)."""
+    try:
+        return bool(sys.stderr.isatty())
+    except (AttributeError, ValueError):  # no isatty, or a closed stream
+        return False
+
+
+#: Plain progress lines of a sweep not on a terminal: one at every this fraction done.
+PROGRESS_LINE_STEP = 0.1
+
+
+def progress_lines(futures: Sequence, step: float = PROGRESS_LINE_STEP) -> None:
+    """Wait for ``futures``, writing ``sweep: DONE/TOTAL points`` on stderr at every
+    ``step`` of them done (and at the last): a log's progress, one line each.
+
+    Args:
+        futures: Dask futures. step: fraction of the points between two lines (0 ... 1].
+    """
+    from distributed import as_completed
+
+    total, shown = len(futures), 0
+    for done, _ in enumerate(as_completed(futures), start=1):
+        if done == total or done - shown >= step * total:
+            print(f"sweep: {done}/{total} points", file=sys.stderr, flush=True)
+            shown = done
 
 
 def run_grid(func: Callable, points: Sequence, scheduler: str | None = None,
