@@ -21,9 +21,9 @@ def short_repr(value: object, limit: int = MAX_VALUE_CHARS) -> str:
         return f"<{type(value).__name__}>"
     if len(text) <= limit:
         return text
-    if isinstance(value, (str, PurePath)):
+    if isinstance(value, (str, PurePath)):  # the count is the value's, not its quoted repr's
         head = limit // 2
-        return f"{text[:head]}...{text[head - limit:]} ({len(text)} characters)"
+        return f"{text[:head]}...{text[head - limit:]} ({len(str(value))} characters)"
     size = f"{len(value)} items, " if isinstance(value, (list, tuple, dict)) else ""
     return f"{text[:limit]}... ({size}{len(text)} characters)"
 
