@@ -146,3 +146,20 @@ def test_a_combs_zero_terms_read_0_not_minus_0(tmp_path):
     r = run_cli("budget", cwd=tmp_path / "c")
     assert r.returncode == 0, r.stderr
     assert "| thermal zero | 0 % |" in r.stdout and "-0 %" not in r.stdout
+
+
+def test_the_texts_notes_read_as_words_not_python_values():
+    """The text's notes say yes / no / none and round their numbers; --json keeps the
+    values (True, null, every digit)."""
+    import re
+
+    design = str(Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3"
+                 / "ti_array_2x3.toml")
+    text = run_cli("budget", "--design", design)
+    assert text.returncode == 0, text.stderr
+    notes = [line for line in text.stdout.splitlines() if re.match(r"  [a-z_]+: ", line)]
+    assert notes
+    assert not [n for n in notes if re.search(r": (None|True|False)$", n)]
+    assert not [n for n in notes if re.search(r"\d\.\d{6,}", n)]
+    doc = json.loads(run_cli("budget", "--design", design, "--json").stdout)
+    assert doc["notes"]["calibration_gauge_fits"] is True

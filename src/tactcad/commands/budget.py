@@ -187,8 +187,20 @@ def render(budget) -> str:
                      + " |")
         lines += readout_alone_lines(u, budget)
     lines += ["", *render_array(budget)]
-    lines += [""] + [f"  {k}: {v}" for k, v in budget.notes.items()]
+    lines += [""] + [f"  {k}: {note_text(v)}" for k, v in budget.notes.items()]
     return "\n".join(lines)
+
+
+def note_text(value) -> str:
+    """A note's value as the text prints it: yes / no, "none" for a figure that does not
+    apply, a number to four digits, words as they are (``--json`` keeps the values)."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if value is None:
+        return "none"
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return str(value)
 
 
 def readout_alone_lines(unit: dict, budget) -> list[str]:
