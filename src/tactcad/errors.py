@@ -7,6 +7,10 @@ from contextvars import ContextVar
 from pathlib import PurePath
 from typing import Iterable, Mapping
 
+#: The reason a design file's table of no known name is refused: a ``--set`` of a key in
+#: it (``--set nope.x=1``) is what brought the table, so its refusal names that option.
+UNKNOWN_SECTION = "unknown section"
+
 #: Longest echo of a user's value in a message (a 100 000-entry list must not
 #: turn into a 500 kB error line).
 MAX_VALUE_CHARS = 80
@@ -106,7 +110,9 @@ class DesignErrors(DesignError):
         than the file (``--set KEY=VALUE``) is refused as given there."""
         def source(e: DesignError) -> str:
             return next((src for key, src in sources.items()
-                         if e.field == key or e.field.startswith((key + "[", key + "."))), e.file)
+                         if e.field == key or e.field.startswith((key + "[", key + "."))
+                         or (key.startswith(e.field + ".") and e.why == UNKNOWN_SECTION)),
+                        e.file)
 
         return DesignErrors(DesignError(e.field, e.value, e.allowed, e.why, source(e))
                             for e in self.errors)

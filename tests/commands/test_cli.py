@@ -92,6 +92,14 @@ def test_unknown_set_key_is_a_json_error_with_field_value_allowed(capsys):
     assert "web_thickness_mm" in err["allowed"]
 
 
+def test_a_set_of_an_unknown_table_is_refused_as_the_set_not_the_file(capsys):
+    code = cli.main(["strength", "--set", "nope.x=1"])
+    out = capsys.readouterr()
+    assert code == 2
+    assert out.err.startswith("tactcad: error: --set nope.x=1: nope = ")
+    assert "unknown section" in out.err
+
+
 def test_out_of_range_set_is_refused_as_text_without_json(capsys):
     code = cli.main(["strength", "--set", "element.web_thickness_mm=3"])
     out = capsys.readouterr()

@@ -33,7 +33,7 @@ from typing import Annotated, Any, Mapping
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError
 from pydantic.fields import FieldInfo
 
-from tactcad.errors import DesignError, DesignErrors
+from tactcad.errors import UNKNOWN_SECTION, DesignError, DesignErrors
 
 #: Deepest nesting of arrays/tables a design file may have; deeper input is
 #: refused before it reaches a recursive reader.
@@ -286,7 +286,7 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
         keys = _keys_of(parent)
         if len(loc) == 1:
             return DesignError(field, "<table>" if isinstance(value, Mapping) else value,
-                               "sections " + keys, "unknown section", file)
+                               "sections " + keys, UNKNOWN_SECTION, file)
         return DesignError(field, value, "keys " + keys if keys else "known keys", "unknown key",
                            file)
     if kind in ("model_type", "dict_type"):  # a table's place holds a value
