@@ -627,3 +627,17 @@ def test_a_change_that_meets_every_target_quotes_no_force_below_the_asked_one():
     assert met.words() == "material.grade = 17-4PH-H900: meets every target"
     short = Alternative("change", "material.grade", "7075-T6", False, 0.0904)
     assert short.words() == "material.grade = 7075-T6: largest full-scale force 0.0904 N"
+
+
+def test_a_dies_design_as_a_stacked_base_is_refused_in_one_line(tmp_path, monkeypatch, capsys):
+    """A silicon die's file given as the base of a stacked design: one refusal naming
+    --design and the die, not every array table as missing."""
+    monkeypatch.chdir(tmp_path)
+    die = Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems" / \
+        "grasper_jaw_5mm_mems.toml"
+    code = main(["design", "--design", str(die), "--kr-over-km", "6", "--kobj-range", "5", "50",
+                 "--full-scale-force", "0.5", "--out", "x.toml", "--verify", "none", "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and error["field"] == "--design"
+    assert "silicon-die" in error["message"] and "errors" not in error["message"]
+    assert not (tmp_path / "x.toml").exists()

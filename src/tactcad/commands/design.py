@@ -1300,6 +1300,7 @@ def start_from_args(args: argparse.Namespace, name: str, out: Path | None = None
 
     design = Path(args.design) if args.design else base_design(out)
     raw = with_overrides(read_toml(design, "design file"), set_keys(args))
+    refuse_another_products_base(raw, design)
     base = check(raw)  # the base's own tables first: the start is made from them
     from tactcad.design.construction_registry import DEFAULT_CONSTRUCTION, construction_name
 
@@ -1315,6 +1316,23 @@ def start_from_args(args: argparse.Namespace, name: str, out: Path | None = None
     data["design"] = {**data["design"], "name": name}
     check(data)
     return data, design
+
+
+def refuse_another_products_base(tables: dict, design: Path) -> None:
+    """Refuse, in one line, a base design file of another product (a silicon die's, read
+    as an array's, listed every array table as missing).
+
+    Raises:
+        DesignError: ``--design`` is another product's design file.
+    """
+    from tactcad.products import products
+
+    other = next((p for p in products() if not p.is_default and p.owns(tables)), None)
+    if other is not None:
+        raise DesignError("--design", str(design), "a stacked design as the base of the "
+                          "layout search", f"it is a {other.name}'s design "
+                          f"([{other.design_table}]): a die is designed to a jaw with --jaw 5 "
+                          "or a jaw file")
 
 
 def written_by_user(field: str, args: argparse.Namespace) -> bool:
