@@ -169,11 +169,18 @@ def named_fields(message: str) -> list[tuple[str, str]]:
 def unknown_options(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
     """The options of ``argv`` its command's parser does not know (a refusal of a missing
     argument names them too: argparse stops at the first)."""
-    sub = next((a for a in parser._actions if isinstance(a, argparse._SubParsersAction)), None)
-    if sub is None or not argv or argv[0] not in sub.choices:
+    command, words = parser, list(argv)
+    # down the command words to the parser that reads the options (``sweep grid``'s own)
+    while words:
+        sub = next((a for a in command._actions if isinstance(a, argparse._SubParsersAction)),
+                   None)
+        if sub is None or words[0] not in sub.choices:
+            break
+        command, words = sub.choices[words[0]], words[1:]
+    if command is parser:
         return []
-    known = sub.choices[argv[0]]._option_string_actions
-    return [w for w in argv[1:] if w.startswith("-") and not re.match(r"^-\d", w)
+    known = command._option_string_actions
+    return [w for w in words if w.startswith("-") and not re.match(r"^-\d", w)
             and w != "--" and w.split("=")[0] not in known]
 
 

@@ -175,3 +175,25 @@ def test_a_sweep_draws_its_progress_bar_on_a_terminal_only(tmp_path, monkeypatch
     if not terminal:  # plain lines a log keeps one by one
         assert "\r" not in r.stderr
         assert "sweep: 2/2 points" in r.stderr.splitlines()
+
+
+def test_a_grid_value_the_rules_refuse_is_named_by_its_option_each_once(tmp_path, capsys):
+    """`--arms 1 50`: both arms refused as --arms with the range (not eight arm entries of
+    the design file, nor the element length the 50 mm arm drags along); a web past the range
+    is --webs', the notch radius that follows it not named apart."""
+    code = main(["sweep", "grid", "--out", str(tmp_path / "a"), "--arms", "1", "50", "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2
+    assert [(e["field"], e["value"]) for e in error["errors"]] == [("--arms", 1.0),
+                                                                    ("--arms", 50.0)]
+    code = main(["sweep", "grid", "--out", str(tmp_path / "w"), "--webs", "0.3", "3", "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and error["field"] == "--webs" and error["value"] == 3.0
+    assert "errors" not in error or len(error["errors"]) == 1
+
+
+def test_a_bad_grid_value_is_refused_without_calling_the_grids_own_options_unknown(capsys):
+    code = main(["sweep", "grid", "--webs", "-1", "--out", "x", "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and error["field"] == "--webs"
+    assert "unrecognized" not in error["message"]

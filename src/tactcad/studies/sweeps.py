@@ -35,10 +35,10 @@ import tempfile
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any, Callable, Iterable, Iterator, Sequence
+from typing import Any, Callable, Iterable, Iterator, Mapping, Sequence
 
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
-from tactcad.errors import DesignError, TactcadError
+from tactcad.errors import DesignError, DesignErrors, TactcadError
 
 #: Local cluster: two worker processes, one thread each.
 LOCAL_WORKERS = 2
@@ -385,15 +385,59 @@ def grid_points(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
     base = plan.element(1).geometry
     radii = list(notch_radii_mm) if notch_radii_mm else [None]
     out = []
+    refused: dict[tuple[str, float], DesignError] = {}
     for t in webs_mm:
         for r in radii:
             R = max(base.notch_radius_mm, t) if r is None else r
             for a in arms_mm:
                 data = design_variant(plan.raw, web_mm=t, notch_radius_mm=R,
                                       arms_mm=[a] * len(plan.slots))
-                g = plan_from_dict(data, source="<design grid>").element(1).geometry
+                try:
+                    g = plan_from_dict(data, source="<design grid>").element(1).geometry
+                except DesignErrors as exc:
+                    # a radius not given follows the web (t/R <= 1): its refusal is the web's
+                    given = {"--webs": t, "--arms": a, "--radii": R if r is not None else t}
+                    for e in grid_refusals(exc, given, radii_given=r is not None):
+                        refused.setdefault((e.field, e.value), e)
+                    continue
                 out.append(GridPoint(model, g, plan.material))
+    if refused:  # every grid value the rules refuse, each once, named by its option
+        raise DesignErrors(list(refused.values()), what="the grid's values")
     return out
+
+
+#: The design field each grid option varies.
+GRID_FIELDS = {"element.web_thickness_mm": "--webs", "arms.lengths_mm": "--arms",
+               "element.notch_radius_mm": "--radii"}
+
+
+def grid_refusals(exc: DesignErrors, given: Mapping[str, float],
+                  radii_given: bool = True) -> list[DesignError]:
+    """A grid point's refusal named by the grid options that set the refused values (the
+    arm ``arms.lengths_mm[3]`` is ``--arms``' value), each with the range the rules allow.
+    Where an option's value is refused, the point's other refusals are its consequences (a
+    longer arm lengthens the element) and are left out; else they are kept as they are.
+
+    Args:
+        exc: the point's design refusal. given: option -> the point's value of it (mm).
+        radii_given: ``--radii`` was given; else the notch radius follows the web and its
+            refusal is ``--webs``'.
+
+    Returns:
+        The refusals, one per field (an arm refused for every element once).
+    """
+    fields = dict(GRID_FIELDS)
+    if not radii_given:
+        fields["element.notch_radius_mm"] = "--webs"
+    named: dict[str, DesignError] = {}
+    others: dict[str, DesignError] = {}
+    for e in exc.errors:
+        option = fields.get(e.field.split("[")[0])
+        if option is None:
+            others.setdefault(e.field, e)
+        else:
+            named.setdefault(option, DesignError(option, given[option], e.allowed, e.why))
+    return list((named or others).values())
 
 
 def design_grid(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
