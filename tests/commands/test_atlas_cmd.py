@@ -474,7 +474,12 @@ def test_a_stop_at_any_moment_ends_130_in_one_line_with_the_whole_file_set(
     if moment == "files written":
         monkeypatch.setattr(atlas_cmd, "front_figure", drawn_under_a_stop)
     out = tmp_path / "out"
-    r = run_cli(*DIE_ATLAS[:-1], "--no-cache", "--out", out)
+    # Ctrl-C as an interpreter takes it (a test worker of a parallel run ignores SIGINT)
+    handler = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        r = run_cli(*DIE_ATLAS[:-1], "--no-cache", "--out", out)
+    finally:
+        signal.signal(signal.SIGINT, handler)
     assert r.returncode == 130, r.stdout + r.stderr
     assert "Traceback" not in r.stdout + r.stderr
     assert {p.name for p in out.iterdir()} == ATLAS_FILES  # every file of the set
