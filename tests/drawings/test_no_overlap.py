@@ -224,3 +224,32 @@ def test_hole_labels_of_a_close_row_stand_a_label_apart_with_both_ends_labelled(
         assert max(gaps) < 2 * (label_mm + pitch_mm * scale)
     if pitch_mm * scale > label_mm + 1.0:
         assert numbers == list(range(1, 49))
+
+
+def test_a_board_that_labels_some_holes_says_how_the_numbers_run():
+    """Where the view labels only some holes, the table's title says the numbers run along
+    each row, so H2 is found between H1 and H3; a board with every hole labelled says
+    nothing more."""
+    import re
+
+    from tactcad.catalogue.rig_catalogue import rig_parts
+    from tactcad.drawings.compose import compose
+    from tactcad.solids.build import build_part
+
+    def board_svg(columns: int) -> str:
+        overrides = {**THIN_SHEET_M3, "array.columns": columns,
+                     "arms.lengths_mm": [19.847] * 2 * columns}
+        problems = Problems("board.toml")
+        plan, rig_design, _ = project_from_data(
+            with_overrides(read_toml(DEFAULT_DESIGN, "design file"), overrides),
+            default_rigs_data(), read_toml(DEFAULT_SCENES, "scenes file"), problems,
+            source="board.toml")
+        spec = rig_parts(plan, rig_design)["terminal_board"]
+        return compose(plan, spec, build_part(spec), 1).sheet.svg()
+
+    def labels(svg: str) -> int:
+        return len(re.findall(r'id="hole-label-\d+"', svg))
+
+    close, roomy = board_svg(12), board_svg(2)
+    assert labels(close) < 48 and "numbers run along each row" in close
+    assert labels(roomy) == 8 and "numbers run along each row" not in roomy

@@ -161,7 +161,8 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
     sh.circle("dimensions", o, 1.2)
     clear_label(sh, o, 1.2, "0,0", "hole-origin")
     ordered = sorted(holes, key=lambda h: (h.y, h.x))
-    for i in labelled_holes(ordered, view.scale):
+    labelled = labelled_holes(ordered, view.scale)
+    for i in labelled:
         h = ordered[i - 1]
         clear_label(sh, view.paper(h.x, h.y), h.d / 2 * view.scale, f"H{i}", f"hole-label-{i}")
     x0, y0, _, _ = table_box(d)
@@ -171,7 +172,10 @@ def hole_table(d: Drawing, view: View, holes: list[Hole2D], datum: tuple[float, 
         if block:
             _hole_table_block(d, x0 + b * (sum(TABLE_COLS) + TABLE_BLOCK_GAP), y0, block,
                               datum)
-    sh.text("hole-table", (x0, y0 - 2.0), "Hole positions from origin 0,0", DIM_TEXT_MM)
+    title = "Hole positions from origin 0,0"
+    if len(labelled) < len(ordered):  # a reader looks for H2 on the view: say where it is
+        title += "; numbers run along each row, labelled where they fit"
+    sh.text("hole-table", (x0, y0 - 2.0), title, DIM_TEXT_MM)
 
 
 def _hole_table_block(d: Drawing, x0: float, y0: float, rows: list[tuple[int, Hole2D]],
