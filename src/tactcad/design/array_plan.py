@@ -34,8 +34,9 @@ from typing import Any, Mapping
 from pydantic import create_model
 
 from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, FileName, Name,
-                                       Problems, Section, Text, choice, content_hash, fmt, integer,
-                                       listing, number, read_assumptions, read_toml, validate)
+                                       Problems, Section, Text, choice, content_hash, copy_tables,
+                                       fmt, integer, listing, number, read_assumptions, read_toml,
+                                       validate)
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
@@ -981,7 +982,7 @@ def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
         references=unit_references(d)[0], references_reason=unit_references(d)[1],
         pairing=pairing_of(d),
         assumptions=read_assumptions(data, DesignFile, p, "element.notch_radius_mm"),
-        raw=copy.deepcopy(dict(data)),
+        raw=copy_tables(dict(data)),
     )
 
 

@@ -19,7 +19,6 @@ element, the notch and each stop gap. Units: mm, N, MPa.
 
 from __future__ import annotations
 
-import copy
 import functools
 from dataclasses import dataclass
 from typing import Any, Mapping
@@ -51,8 +50,8 @@ from tactcad.partlib.array.prism import Hole
 from tactcad.vocabulary.material_library import material_fields, strength_settings
 from tactcad.vocabulary.process import (CUT_PROCESSES, DEFAULT_CUT_PROCESS, ProcessLimits,
                                         check_sheet_process, first_process_holding)
-from tactcad.vocabulary.schema import (Derived, Problems, Section, choice, fmt, number,
-                                       read_assumptions, validate)
+from tactcad.vocabulary.schema import (Derived, Problems, Section, choice, copy_tables, fmt,
+                                       number, read_assumptions, validate)
 from tactcad.vocabulary.standards import (DOWEL_PINS, MINIATURE_SCREWS, shortest_dowel_length,
                                           shortest_stock_length)
 
@@ -618,7 +617,7 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
         derived=derived_values(d), references=refs, references_reason=why, pairing=pairing_of(d),
         assumptions=read_assumptions(data, CombFile, p, "comb.post_length_mm"),
         construction="monolithic-comb", comb=comb_geometry(d, sheets), hard_stops=hard_stops(d, sheets),
-        raw=copy.deepcopy(dict(data)))
+        raw=copy_tables(dict(data)))
 
 
 def sheet_placement(plan: Plan, row: int) -> Placement:

@@ -39,7 +39,6 @@ full-scale force any sheet carries, as an option to paste. Units: mm, N, N/mm.
 
 from __future__ import annotations
 
-import copy
 import math
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -47,6 +46,7 @@ from dataclasses import dataclass, replace
 from pathlib import PurePath
 from typing import Any, Callable, Iterator, Mapping
 
+from tactcad.vocabulary.schema import copy_tables
 from tactcad.design.array_plan import plan_from_dict
 from tactcad.errors import DesignError, DesignErrors
 from tactcad.studies.inverse_design import (InverseDesignError, Targets, grid_fitted_to_sheet,
@@ -343,7 +343,7 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                 targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
     """The comb's tables for one sheet, before its webs and stops (see the module doc), and
     the limits already binding (none when it can go on)."""
-    d = copy.deepcopy(base)
+    d = copy_tables(base)
     e, comb = d["element"], d["comb"]
     if grade is not None:
         d["material"] = {"name": grade, "grade": grade}
@@ -446,7 +446,7 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
                              f"the {thinnest.value_mm:g} mm {process_name(d)} holds in a "
                              f"{d['sheet']['thickness_mm']:g} mm sheet ({thinnest.rule})"]
         webs.append(web)
-    d = copy.deepcopy(d)
+    d = copy_tables(d)
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
     return d, plan_from_dict(d), []
 
@@ -648,7 +648,7 @@ def rated_force_N(d: dict, bound: ForceBound) -> float | None:
 
     if bound.binding_force_N is not None and math.isfinite(bound.binding_force_N):
         return float(round_down(bound.binding_force_N))
-    probe = copy.deepcopy(d)
+    probe = copy_tables(d)
     probe["requirements"].pop("full_scale_force_N")
     try:
         return rated_full_scale_force(plan_from_dict(probe))
@@ -779,7 +779,7 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
     if not lo <= columns <= hi:
         raise DesignError("--columns", columns, f"{lo} ... {hi} for a monolithic comb",
                           "the grid's range (array.columns)")
-    base = copy.deepcopy(dict(base))
+    base = copy_tables(dict(base))
     base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
     if process is not None:
         base["element"]["process"] = process
@@ -1227,7 +1227,7 @@ def surviving(good: list[CombCandidate], grasp_N: float, room: Any,
     """
     nearest = None
     for c in in_preference(good):
-        d = copy.deepcopy(c.data)
+        d = copy_tables(c.data)
         d["requirements"]["max_grasp_force_N"] = float(grasp_N)
         d["grasper_jaw"] = dict(room.table or {})
         plan, fails, margin, rated = judge(d, envelope_of, room)
@@ -1406,7 +1406,7 @@ def with_fasteners(best: CombCandidate, room: Any, envelope_of: Callable | None
     to it. The chosen comb's own pair counts, so one always does."""
     tried = []
     for screw, dowel in fastener_pairs():
-        d = copy.deepcopy(best.data)
+        d = copy_tables(best.data)
         d["comb"]["screw_size"] = screw
         d["comb"]["dowel_diameter_mm"] = f"{dowel:g}"
         own = (screw, f"{dowel:g}") == (best.data["comb"]["screw_size"],
@@ -1492,7 +1492,7 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
         The misfits (see above); ``[]`` when some sheet's smallest comb fits, or when no
         sheet's comb has a plan (the search then says why).
     """
-    tables: dict = copy.deepcopy(dict(base))
+    tables: dict = copy_tables(dict(base))
     tables["requirements"] = {}
     if process is not None:
         tables["element"]["process"] = process
@@ -1717,7 +1717,7 @@ def stop_reason(plan: Any, force_N: float) -> str:
 def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
           columns: int, fasteners: tuple[FastenerTry, ...] = ()) -> dict:
     """The chosen tables with their name, description and every reason."""
-    d = copy.deepcopy(d)
+    d = copy_tables(d)
     template = d.get("design", {}).get("name", "the template")
     lo, hi = targets.k_obj_range_N_per_mm
     d["design"] = {"name": name, "description": (

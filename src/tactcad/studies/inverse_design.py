@@ -59,7 +59,6 @@ Units: mm, N, MPa, N/mm.
 
 from __future__ import annotations
 
-import copy
 import math
 import re
 from contextlib import contextmanager
@@ -69,6 +68,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from tactcad.vocabulary.schema import copy_tables
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, DEFAULT_DESIGN, MIN_BASE_BELOW_ARM_MM,
                                        MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan,
                                        element_process_limits, plan_from_dict)
@@ -126,7 +126,7 @@ def design_variant(data: Mapping[str, Any], *, web_mm: float | None = None,
     Returns:
         A new dict of raw tables.
     """
-    out = copy.deepcopy(dict(data))
+    out = copy_tables(dict(data))
     el = out["element"]
     if web_mm is not None:
         el["web_thickness_mm"] = float(web_mm)
@@ -219,7 +219,7 @@ def grid_fitted_to_sheet(data: Mapping[str, Any]) -> dict[str, Any]:
     """
     from tactcad.design.readout_section import DEFAULTS, GRID_WIDTH_RANGE_MM
 
-    out = copy.deepcopy(dict(data))
+    out = copy_tables(dict(data))
     readout = dict(out.get("readout") or {})
     sheet = float(out["sheet"]["thickness_mm"])
     default = float(DEFAULTS["grid_width_mm"][0])
@@ -248,7 +248,7 @@ def held_to_process(data: Mapping[str, Any]) -> dict[str, Any]:
     Returns:
         A new dict of raw tables (not validated).
     """
-    out = copy.deepcopy(dict(data))
+    out = copy_tables(dict(data))
     el = out["element"]
     lim = element_process_limits(out)
     why = out.setdefault("assumptions", {})
@@ -1110,7 +1110,7 @@ def with_grid(data: Mapping[str, Any], rows: int | None, columns: int | None) ->
     """Raw tables with a new rows x columns grid; every arm the base's first
     (the inverse design rewrites them). Rows and columns are validated with
     the design (``array.rows``, ``array.columns``)."""
-    out = copy.deepcopy(dict(data))
+    out = copy_tables(dict(data))
     if rows is None and columns is None:
         return out
     arr = out["array"]
@@ -1183,7 +1183,7 @@ def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = 
     Raises:
         DesignError: a bad grade.
     """
-    data = copy.deepcopy(dict(raw))
+    data = copy_tables(dict(raw))
     data["assumptions"] = neutral_assumptions(data, base_name)
     for key in CHOSEN_FOR_THE_BASE - kept:
         section, field = key.split(".")
@@ -1293,11 +1293,11 @@ def design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "i
     """
     kw = dict(name=name, correction=correction, arm_max_mm=arm_max_mm,
               shortest_element=shortest_element)
-    centred = centred_for_tissue(plan_from_dict(copy.deepcopy(data), source="<inverse design>"),
+    centred = centred_for_tissue(plan_from_dict(copy_tables(data), source="<inverse design>"),
                                  targets)
     note = ""
     try:
-        d = _design_from_tables(copy.deepcopy(data), centred, **kw)
+        d = _design_from_tables(copy_tables(data), centred, **kw)
     except InverseDesignError as exc:
         if centred is targets:
             raise
