@@ -544,7 +544,7 @@ class Project:
             force_N, angle_deg: the grasp force (N, 0 < F <= 1000) or the closing angle
                 (degrees, 0 ... 90); at most one.
             kobj: the tissue's true stiffness under one tip (N/mm).
-            coupling: ``layer``, ``half-space`` or ``none``. profile: ``wedge`` or ``slab``.
+            coupling: ``layer``, ``halfspace`` or ``none``. profile: ``wedge`` or ``slab``.
             pivot_mm: the pin (X, Y) from the first tip (mm). pin_to_tip_mm, opening_deg,
                 slab_thickness_mm, lead_channel_mm: the jaw's sizes and the tissue's (mm,
                 degrees). model: ladder level of the elements' K.
@@ -803,6 +803,7 @@ def _checked_number(option: str, value: Any, lo: float, hi: float, unit: str, lo
     """
     import argparse
     import math
+    import numbers
 
     from tactcad.commands.options import number
     from tactcad.errors import DesignError
@@ -814,8 +815,8 @@ def _checked_number(option: str, value: Any, lo: float, hi: float, unit: str, lo
     if count and (isinstance(value, (str, bytes)) or not hasattr(value, "__len__")
                   or len(value) != count):
         raise DesignError(option, value, allowed)
-    for x in items:
-        if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x):
+    for x in items:  # any real number (numpy's too), not a bool
+        if isinstance(x, bool) or not isinstance(x, numbers.Real) or not math.isfinite(x):
             raise DesignError(option, value, allowed)
         try:
             parse(repr(float(x)))

@@ -99,3 +99,22 @@ def test_a_pin_past_the_last_tip_is_refused_naming_the_pin():
     r = run_cli("grasp", "--design", str(DESIGN), "--pivot-mm", "400", "0")
     assert r.returncode == 2
     assert "--pivot-mm" in r.stderr and "--pin-to-tip-mm" not in r.stderr
+
+
+def test_a_grasp_whose_leads_do_not_fit_the_channel_warns_and_does_not_pass():
+    r = run_cli("grasp", "--design", str(DESIGN), "--lead-channel-mm", "0.1", "--json")
+    assert r.returncode == 1, r.stderr
+    record = json.loads(r.stdout)
+    assert record["passed"] is False and not record["leads"]["fits"]
+    assert any("lead channel" in w for w in record["warnings"])
+    assert run_cli("grasp", "--design", str(DESIGN)).returncode == 0  # the default fits
+
+
+def test_the_apis_numbers_take_numpys_reals_and_refuse_a_bool():
+    import numpy as np
+
+    project = tactcad.load(str(DESIGN))
+    assert project.grasp(force_N=np.float32(0.2))["passed"] is True
+    with pytest.raises(DesignError) as caught:
+        project.grasp(force_N=True)
+    assert caught.value.field == "force_N"

@@ -104,3 +104,12 @@ def test_an_option_a_die_cannot_take_is_refused_by_name(die_folder, argv, option
     r = run_cli("tolerance", *argv, "--json", cwd=die_folder)
     assert r.returncode == 2, r.stdout + r.stderr
     assert json.loads(r.stdout)["error"]["field"] == option
+
+
+def test_a_kobj_at_the_searched_ranges_end_is_refused_with_an_open_range(die_folder):
+    """K_m / 1000 itself is outside the search: the range is said open, so the value given
+    does not read as allowed."""
+    r = run_cli("tolerance", "--kobj", "0.0005", "--json", cwd=die_folder)  # its K_m / 1000
+    error = json.loads(r.stdout)["error"]
+    assert r.returncode == 2 and error["field"] == "--kobj"
+    assert error["allowed"].startswith("0.0005 < K_obj < ")

@@ -159,7 +159,8 @@ def run(args: argparse.Namespace) -> int:
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
     print(dumps(record, indent=1) if args.json else render(record))
-    # an element past its overload limit in the design's own layout: exit 1, as a failed check
+    # an element past its overload limit in the design's own layout, or leads the shaft
+    # cannot take: exit 1, as a failed check
     return 0 if record["passed"] else 1
 
 

@@ -139,10 +139,11 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
     leads = leads_check(len(plan.slots), channel, readout_chain(plan).lead_wires)
     result = result_with_kobj_range(result, (lo, hi))
     warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)),
-                            *map(overload_warning, shown_layouts(result))) if w]
-    # an element past its overload limit in the design's own layout: the grasp the
-    # hardware makes damages it, a result that does not pass
-    passed = not overloaded_sites(result.as_laid_out.tips)
+                            *map(overload_warning, shown_layouts(result)),
+                            leads_warning(leads, channel_why)) if w]
+    # an element past its overload limit in the design's own layout (the grasp the hardware
+    # makes damages it) or leads the shaft cannot take: a result that does not pass
+    passed = not overloaded_sites(result.as_laid_out.tips) and leads.fits
     return {**result.as_json(), "model": asked.model, "leads": leads.as_json(),
             "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings, "passed": passed,
             "reasons": {
@@ -172,6 +173,24 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
                                 "base" in (plan.raw.get("tissue_slab") or {}) else
                                 f"{DEFAULT_TISSUE_BASE}, assumed: tissue gripped on the jaw's "
                                 "face does not slip on it")}}
+
+
+def leads_warning(leads, channel_why: str) -> str | None:
+    """The warning a grasp gives where the leads do not fit the shaft's lead channel.
+
+    Args:
+        leads: :class:`tactcad.in_use.shaft_leads.LeadsCheck`. channel_why: where the
+            channel's diameter comes from.
+
+    Returns:
+        One line with the bundle's and the channel's diameters (mm) and the channel's
+        source; None where the leads fit.
+    """
+    if leads.fits:
+        return None
+    return (f"the {leads.leads} leads (a {leads.bundle_diameter_mm:.3g} mm bundle) do not fit "
+            f"the {leads.channel_diameter_mm:g} mm lead channel ({channel_why}): a wider "
+            "channel, fewer or thinner leads")
 
 
 def shown_layouts(result) -> list:

@@ -254,7 +254,7 @@ def check_kobj(plan, k_obj) -> list[float]:
     lo, hi = kobj_bracket_N_per_mm(plan)
     for k in k_obj:
         if not (math.isfinite(k) and lo < k < hi):
-            raise DesignError("--kobj", k, f"a K_obj {lo:.3g} ... {hi:.3g} N/mm",
+            raise DesignError("--kobj", k, f"{lo:.4g} < K_obj < {hi:.4g} N/mm",
                               "the die's coupled inversion searches K_m / 1000 ... 1000 K_r")
     return [float(k) for k in k_obj]
 
