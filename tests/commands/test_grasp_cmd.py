@@ -84,9 +84,9 @@ def test_a_non_paper_design_and_the_text_table():
     r = run_cli("grasp", "--design", TI, "--set", "array.columns=4", "--set",
                 "arms.lengths_mm=[19.605,6.196,19.605,19.605,19.605,6.196,19.605,19.605]",
                 "--lead-channel-mm", "1")
-    assert r.returncode == 0, r.stderr
+    assert r.returncode == 1, r.stderr  # the leads do not fit: a grasp that does not pass
     assert "| unit | r_r mm |" in r.stdout and "paired:" in r.stdout
-    assert "does NOT fit" in r.stdout
+    assert "does NOT fit" in r.stdout and "do not fit the 1 mm lead channel" in r.stdout
 
 
 @pytest.mark.parametrize("options, words", [(["--force-N", "0"], "--force-N"),
