@@ -558,15 +558,13 @@ class Project:
         from tactcad.errors import DesignError
         from tactcad.in_use.grasp_experiment import COUPLINGS, DEFAULT_PROFILE, PROFILES
         from tactcad.mechanics.ladder import UnknownModelError, models
-        from tactcad.studies.grasp_report import GRASP_NUMBERS, GraspAsked, grasp_record
+        from tactcad.studies.grasp_report import GraspAsked, grasp_record
 
         given = {"force_N": force_N, "angle_deg": angle_deg, "kobj": kobj,
                  "pivot_mm": pivot_mm, "pin_to_tip_mm": pin_to_tip_mm,
                  "opening_deg": opening_deg, "slab_thickness_mm": slab_thickness_mm,
                  "lead_channel_mm": lead_channel_mm}
-        checked = {k: _checked_number(option_name(k), v, *GRASP_NUMBERS[k], count=2
-                                      if k == "pivot_mm" else None)
-                   for k, v in given.items() if v is not None}
+        checked = {k: v for k, v in _grasp_numbers(given).items() if v is not None}
         for option, value, allowed in (("--coupling", coupling, COUPLINGS),
                                        ("--profile", profile or DEFAULT_PROFILE, PROFILES)):
             if value not in allowed:
@@ -825,6 +823,22 @@ def _checked_number(option: str, value: Any, lo: float, hi: float, unit: str, lo
     return tuple(float(x) for x in items) if count else float(value)
 
 
+def _grasp_numbers(given: Mapping[str, Any]) -> dict[str, Any]:
+    """A grasp's keyword numbers, each checked with its option's range
+    (:data:`tactcad.studies.grasp_report.GRASP_NUMBERS`; ``pivot_mm`` two of them), None
+    left as given.
+
+    Raises:
+        DesignError: a value out of its range or not a number, named by its option.
+    """
+    from tactcad.studies.grasp_report import GRASP_NUMBERS
+
+    return {k: None if v is None else
+            _checked_number(option_name(k), v, *GRASP_NUMBERS[k],
+                            count=2 if k == "pivot_mm" else None)
+            for k, v in given.items()}
+
+
 def _checked_integer(option: str, value: Any, lo: int, hi: int, what: str) -> int:
     """``value`` when it is an integer (not a bool) in ``lo ... hi``, as the command's
     option of that range takes it (:func:`tactcad.commands.options.count`).
@@ -1048,7 +1062,6 @@ class DieProject:
         """
         from tactcad.errors import DesignError
         from tactcad.in_use.grasp_experiment import DEFAULT_PROFILE
-        from tactcad.studies.grasp_report import GRASP_NUMBERS
 
         if force_N is not None and angle_deg is not None:  # the command's options exclude it
             raise DesignError("force_N / angle_deg", (force_N, angle_deg), "one of them, or "
@@ -1056,10 +1069,8 @@ class DieProject:
         given = {"force_N": force_N, "angle_deg": angle_deg, "kobj": kobj,
                  "slab_thickness_mm": slab_thickness_mm, "opening_deg": opening_deg}
         # the ranges the command's options take (a die's grasp reads the same options)
-        checked = {k: None if v is None else _checked_number(option_name(k), v, *GRASP_NUMBERS[k])
-                   for k, v in given.items()}
         return self._report("grasp", coupling=coupling, profile=profile or DEFAULT_PROFILE,
-                            **checked)
+                            **_grasp_numbers(given))
 
     @keyword_errors
     def tolerance(self, samples: int | None = None, seed: int | None = None,
