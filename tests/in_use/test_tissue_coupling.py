@@ -49,6 +49,27 @@ def test_uncoupled_limit_is_eq2():
     assert coupled_ratio(sample, k, (1, 2), 5.0) == pytest.approx(deflection_ratio(2.0, 20.0, 5.0), rel=2e-3)
 
 
+def test_a_batch_of_kobj_reads_what_each_kobj_reads_alone():
+    """R over an array of K_obj (one batched solve, every pressing tip) equals R at each."""
+    plan = load_design(TI)
+    k = ladder_stiffness_by_element(plan)
+    sample = coupled_sample(plan)
+    unit = design_units(plan, k)[0]
+    k_obj = np.geomspace(0.05, 80.0, 12).reshape(3, 4)
+    batch = coupled_ratio(sample, k, unit, k_obj)
+    assert batch.shape == (3, 4)
+    alone = np.vectorize(lambda x: coupled_ratio(sample, k, unit, float(x)))(k_obj)
+    np.testing.assert_allclose(batch, alone, rtol=1e-12)
+    assert np.all(np.diff(batch.ravel()) < 0)  # R falls with K_obj
+
+
+def test_the_die_tolerance_solves_the_one_coupled_model():
+    from tactcad.in_use import tissue_coupling
+    from tactcad.products.silicon_die.studies import die_tolerance
+
+    assert die_tolerance.coupled_deflections is tissue_coupling.coupled_deflections
+
+
 def test_coupled_inversion_reads_back_the_sample_on_a_design():
     plan = load_design(TI)
     k = ladder_stiffness_by_element(plan)

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tactcad.studies.tolerance_montecarlo import sample_statistics
+from tactcad.in_use.tissue_coupling import coupled_deflections
 from tactcad.errors import DesignError
 
 #: Drawn dies per chunk: the batched solves of a chunk stay a few tens of MB.
@@ -164,24 +165,6 @@ def die_sample(plan):
     side = plan.post_um * 1e-3
     punches = [Punch(b.x_um * 1e-3, b.tip_y_um * 1e-3, side, side) for b in plan.beams]
     return coupled_sample_from_punches([b.number for b in plan.beams], punches, Tissue())
-
-
-def coupled_deflections(c_hat: np.ndarray, k: np.ndarray, k_obj: np.ndarray) -> np.ndarray:
-    """Every tip's deflection per unit travel with all posts pressing one tissue:
-    e = P / K, P = (diag(1/K) + C_hat / K_obj)^-1 1 (:mod:`tactcad.in_use.tissue_coupling`).
-
-    Args:
-        c_hat: the posts' normalised compliance, shape (m, m).
-        k: each beam's K (N/mm), shape (n, m). k_obj: K_obj (N/mm), shape (n,).
-
-    Returns:
-        e, shape (n, m) (mm per mm of travel).
-    """
-    a = c_hat[None, :, :] / k_obj[:, None, None]
-    idx = np.arange(k.shape[1])
-    a[:, idx, idx] += 1.0 / k
-    force = np.linalg.solve(a, np.ones(k.shape + (1,)))[..., 0]
-    return force / k
 
 
 @dataclass(frozen=True)
