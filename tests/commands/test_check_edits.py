@@ -135,6 +135,17 @@ def test_an_export_older_than_its_rigs_or_scenes_is_exported_again(
                                      "was written)")
 
 
+def test_an_export_that_records_no_inputs_is_exported_again(tmp_path, export_files_only):
+    """An export made before exports recorded their inputs may be older than the rigs and
+    scenes: with nothing edited by hand it is written again, saying why."""
+    project = tactcad.load()
+    out = tmp_path / "ex"
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"})
+    report = project.check(out, cache=False)
+    assert export_files_only == [out]
+    assert report.export_refusal.startswith("made without a record of its inputs")
+
+
 def test_an_export_older_than_its_rigs_with_a_hand_edit_says_so_and_fails(
         tmp_path, project_folder, export_files_only):
     """Files edited by hand are never written over: the export is checked as it is, and

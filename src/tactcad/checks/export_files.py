@@ -61,8 +61,8 @@ def stale_results(out_dir: str | Path, stale: Sequence[str]) -> list[CheckResult
 
     again = f"`tactcad export --out {shlex.quote(str(out_dir))}` writes it again"
     return [CheckResult(STALE_CHECK, MANIFEST, False,
-                        f"the export is {stale_said(tuple(stale))}: its files are not what the "
-                        f"project makes now; {again}")]
+                        f"the export is {stale_said(tuple(stale))}: its files may not be what "
+                        f"the project makes now; {again}")]
 
 
 def export_files_group(context: CheckContext) -> Iterator[Found]:

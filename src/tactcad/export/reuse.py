@@ -76,10 +76,9 @@ def reuse_state(plan: Plan, out_dir: str | Path, project: Any = None) -> ExportS
 
 
 #: What an export is older than when its manifest records no inputs.
-UNRECORDED_INPUTS = "the project's files (its manifest records no inputs: an earlier export)"
+UNRECORDED_INPUTS = "its inputs (not recorded)"
 #: What an export is older than when its files are as recorded but a job's key is not.
-OTHER_INPUTS = ("its other inputs (the project's atlas files, tactcad's data or the installed "
-                "CAD tools)")
+OTHER_INPUTS = "its other inputs"
 
 
 def changed_inputs(recorded: Any, project: Any) -> list[str]:
@@ -119,8 +118,14 @@ def changed_inputs(recorded: Any, project: Any) -> list[str]:
 
 
 def stale_said(stale: tuple[str, ...] | list[str]) -> str:
-    """One line for an export older than its inputs: ``older than rigs.toml (changed
-    since it was written)``."""
+    """One line for an export older than its inputs (:func:`changed_inputs`): ``older than
+    rigs.toml (changed since it was written)``."""
+    if list(stale) == [UNRECORDED_INPUTS]:
+        return ("made without a record of its inputs (an earlier tactcad's export): it may be "
+                "older than the project's rigs and scenes files")
+    if list(stale) == [OTHER_INPUTS]:
+        return ("older than its other inputs (changed since it was written: the project's "
+                "atlas files, tactcad's data or the installed CAD tools)")
     return f"older than {', '.join(stale)} (changed since it was written)"
 
 
