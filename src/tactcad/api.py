@@ -688,7 +688,9 @@ class Project:
                 names this design (:func:`tactcad.export.reuse.export_state`): a
                 file changed or removed by hand since is left as it is, one failing
                 check of the ``export files`` group; otherwise (another design, no
-                export) the design is exported there first. ``None``: a temporary
+                export, an export older than an edit of the rigs, scenes or another
+                file it was made from: :func:`tactcad.export.reuse.changed_inputs`)
+                the design is exported there first. ``None``: a temporary
                 folder, removed afterwards.
             scenes: check only these scenes (interference, sanity, STEP and
                 GLB read-back); ``None`` checks the array and every scene.
@@ -728,7 +730,8 @@ class Project:
         self._report = report
         to_run = groups_to_run(scenes)
         context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)
-        if out is not None and reuse_state(self.plan, Path(out)).refusal is not None:
+        if out is not None and reuse_state(self.plan, Path(out), self.validated).refusal \
+                is not None:
             check_out_dir(out)  # a folder no export can be written to: refused before any solve
         # what reads the design alone (the verification matrix) runs before any export
         with keeping_results(_store(cache)):
@@ -736,35 +739,41 @@ class Project:
         try:
             with tempfile.TemporaryDirectory() as tmp:
                 folder = Path(out) if out is not None else Path(tmp)
-                state = reuse_state(self.plan, folder)
+                state = reuse_state(self.plan, folder, self.validated)
                 refusal = state.refusal
                 edited: dict[str, str] | None = state.edited
+                stale = state.stale
                 if refusal is None:
                     report(f"checking the export in {folder} as it is "
-                           f"({_edits_said(state.edited)})")
+                           f"({_edits_said(state.edited, stale)})")
                 elif scenes:
                     report(f"exporting the scenes to {folder} first: {refusal}")
                     export_scenes(self.validated, folder, scenes, log=_quiet, store=_store(cache),
                                   parts=self._cache)
-                    edited = None  # the manifest is left as it was: its files not compared
+                    edited, stale = None, ()  # the manifest is left as it was: not compared
                 else:
                     report(f"exporting to {folder} first: {refusal}")
                     export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
+                    stale = ()  # written from the project's files now
                 run_groups([g for g in to_run if g.on_export],
-                           replace(context, folder=folder, edited=edited), done)
+                           replace(context, folder=folder, edited=edited, stale=stale), done)
         finally:
             self._report = _quiet
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
                            refusal, None if out is None else str(out))
 
 
-def _edits_said(edited: Mapping[str, str]) -> str:
-    """What a check says of an export's hand edits as it starts reading it."""
+def _edits_said(edited: Mapping[str, str], stale: Sequence[str] = ()) -> str:
+    """What a check says of an export's hand edits (and of the inputs it is older than, which
+    an export with hand edits is checked despite) as it starts reading it."""
+    from tactcad.export.reuse import stale_said
+
     if not edited:
         return "same design, every file as listed"
+    older = f"; {stale_said(tuple(stale))}, failing the export files check too" if stale else ""
     return (f"same design; {len(edited)} file(s) changed or removed by hand since the export, "
-            "left as they are and failing the export files check")
+            f"left as they are and failing the export files check{older}")
 
 
 def element_number(number: Any, count: int, field: str = "number") -> int:

@@ -19,15 +19,27 @@ from tactcad.store import stack_versions
 from tactcad.version import VERSION
 
 
-def fake_export(folder: Path, design_sha256: str, files: dict[str, bytes]) -> None:
-    """A folder whose manifest lists ``files`` (written with those bytes) for the design."""
+def fake_export(folder: Path, design_sha256: str, files: dict[str, bytes],
+                inputs: dict | None = None) -> None:
+    """A folder whose manifest lists ``files`` (written with those bytes) for the design,
+    and ``inputs`` as the export's record of what it was made from where given."""
     for rel, data in files.items():
         (folder / rel).parent.mkdir(parents=True, exist_ok=True)
         (folder / rel).write_bytes(data)
     man = {"design": {"sha256": design_sha256}, "tactcad_version": VERSION,
            "cad_stack": stack_versions(),
            "files": [{"path": rel, "sha256": file_sha256(folder / rel)} for rel in files]}
+    if inputs is not None:
+        man["inputs"] = inputs
     (folder / "manifest.json").write_text(json.dumps(man), encoding="utf-8")
+
+
+def inputs_of(project) -> dict:
+    """The ``inputs`` an export of ``project`` (:class:`tactcad.api.Project`) records now."""
+    from tactcad.export.job import Run
+    from tactcad.export.jobs import export_inputs
+
+    return export_inputs(Run(project.validated, Path(), lambda line: None))
 
 
 @pytest.fixture
@@ -48,7 +60,7 @@ def test_check_leaves_a_hand_edit_as_it_is_and_fails_it(tmp_path, export_files_o
     out = tmp_path / "ex"
     fake_export(out, project.plan.design_hash,
                 {"dxf/spacer_qty6.dxf": b"0\nEOF\n", "drawings/spacer.svg": b"<svg/>",
-                 "bom.csv": b"part,qty\n"})
+                 "bom.csv": b"part,qty\n"}, inputs_of(project))
     with open(out / "dxf" / "spacer_qty6.dxf", "ab") as fh:
         fh.write(b"; note\n")
     (out / "drawings" / "spacer.svg").unlink()
@@ -79,10 +91,104 @@ def test_check_exports_again_only_for_another_design_or_no_export(tmp_path, expo
     assert export_files_only == [other] and report.export_refusal == "made from another design"
 
     current = tmp_path / "current"
-    fake_export(current, project.plan.design_hash, {"bom.csv": b"part,qty\n"})
+    fake_export(current, project.plan.design_hash, {"bom.csv": b"part,qty\n"},
+                inputs_of(project))
     report = project.check(current, cache=False)
     assert export_files_only == [other] and report.passed
     assert [r.check for r in report.results] == [EDITED_CHECK]
+
+
+@pytest.fixture
+def project_folder(tmp_path):
+    """A project folder as `tactcad new` makes it: (design file, rigs file, scenes file)."""
+    from tactcad.project_folder import new_project
+
+    made = new_project(tmp_path / "lab")
+    return made.design, made.folder / "rigs.toml", made.folder / "scenes.toml"
+
+
+def edited(path: Path, old: str, new: str) -> None:
+    """``path`` with its one line ``old`` made ``new`` (as a person edits it)."""
+    text = path.read_text(encoding="utf-8")
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, new), encoding="utf-8")
+
+
+def test_an_export_older_than_its_rigs_or_scenes_is_exported_again(
+        tmp_path, project_folder, export_files_only):
+    design, rigs, scenes = project_folder
+    project = tactcad.load(design)
+    out = tmp_path / "ex"
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"}, inputs_of(project))
+    assert project.check(out, cache=False).reused_export and export_files_only == []
+
+    edited(rigs, "height_mm = 220.0", "height_mm = 260.0")  # the column: the design stays
+    after = tactcad.load(design)
+    assert after.plan.design_hash == project.plan.design_hash
+    report = after.check(out, cache=False)
+    assert export_files_only == [out] and not report.reused_export
+    assert report.export_refusal == "older than rigs.toml (changed since it was written)"
+
+    edited(scenes, "sample_stiffness_N_per_mm = 5.0", "sample_stiffness_N_per_mm = 2.24")
+    report = tactcad.load(design).check(out, cache=False)
+    assert report.export_refusal == ("older than rigs.toml, scenes.toml (changed since it "
+                                     "was written)")
+
+
+def test_an_export_that_records_no_inputs_is_exported_again(tmp_path, export_files_only):
+    """An export made before exports recorded their inputs may be older than the rigs and
+    scenes: with nothing edited by hand it is written again, saying why."""
+    project = tactcad.load()
+    out = tmp_path / "ex"
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"})
+    report = project.check(out, cache=False)
+    assert export_files_only == [out]
+    assert report.export_refusal.startswith("made without a record of its inputs")
+
+
+def test_an_export_older_than_its_rigs_with_a_hand_edit_says_so_and_fails(
+        tmp_path, project_folder, export_files_only):
+    """Files edited by hand are never written over: the export is checked as it is, and
+    one failing check names the input edited since and the command that writes it again."""
+    from tactcad.checks.export_files import STALE_CHECK
+
+    design, rigs, _ = project_folder
+    project = tactcad.load(design)
+    out = tmp_path / "ex"
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"}, inputs_of(project))
+    with open(out / "bom.csv", "ab") as fh:
+        fh.write(b"edited\n")
+    edited(rigs, "stiffness_N_per_mm = [5.0, 2.24, 1.0]", "stiffness_N_per_mm = [5.0, 2.24]")
+
+    report = tactcad.load(design).check(out, cache=False)
+
+    assert export_files_only == [] and report.reused_export
+    stale = [r for r in report.failures if r.check == STALE_CHECK]
+    assert len(stale) == 1 and "older than rigs.toml" in stale[0].detail
+    assert f"`tactcad export --out {out}` writes it again" in stale[0].detail
+
+
+def test_an_export_records_what_it_was_made_from(tmp_path, project_folder, monkeypatch):
+    """The manifest's inputs are those a check plans from the project's files, whether the
+    export wrote all its jobs or some: current until an input changes, then naming the
+    file; no record at all is never current."""
+    from tactcad.export import run
+    from tactcad.export.reuse import UNRECORDED_INPUTS, changed_inputs
+
+    design, rigs, _ = project_folder
+    project = tactcad.load(design)
+    run.export(project.validated, tmp_path / "some", log=lambda line: None,
+               select=lambda jobs: [])
+    monkeypatch.setattr(run, "run_jobs", lambda *args, **kw: ([], 0))  # every job, none made
+    run.export(project.validated, tmp_path / "all", log=lambda line: None)
+    recorded = json.loads((tmp_path / "some" / "manifest.json").read_text())["inputs"]
+
+    assert json.loads((tmp_path / "all" / "manifest.json").read_text())["inputs"] == recorded
+    assert [f["file"] for f in recorded["files"]] == [design.name, "rigs.toml", "scenes.toml"]
+    assert changed_inputs(recorded, project.validated) == []
+    edited(rigs, "height_mm = 220.0", "height_mm = 221.0")
+    assert changed_inputs(recorded, tactcad.load(design).validated) == ["rigs.toml"]
+    assert changed_inputs(None, project.validated) == [UNRECORDED_INPUTS]
 
 
 def test_the_state_of_an_export_folder(tmp_path):

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import shlex
 from pathlib import Path
-from typing import Iterator, Mapping
+from typing import Iterator, Mapping, Sequence
 
 from tactcad.catalogue.files import MANIFEST
 from tactcad.checks.check_result import CheckResult
@@ -39,9 +39,37 @@ def edited_results(out_dir: str | Path, edited: Mapping[str, str]) -> list[Check
             for rel, how in edited.items()]
 
 
+#: The check an export older than its inputs fails (:func:`stale_results`).
+STALE_CHECK = "export_inputs"
+
+
+def stale_results(out_dir: str | Path, stale: Sequence[str]) -> list[CheckResult]:
+    """One failing check when the export checked as it is (it holds files edited by hand,
+    which a check never writes over) is older than the project's inputs, naming them and
+    the command that writes the export again; nothing when it is current.
+
+    Args:
+        out_dir: the export folder, as the user named it (shown in the hint).
+        stale: ``ExportState.stale``.
+
+    Returns:
+        :class:`~tactcad.checks.check_result.CheckResult` s.
+    """
+    if not stale:
+        return []
+    from tactcad.export.reuse import stale_said
+
+    again = f"`tactcad export --out {shlex.quote(str(out_dir))}` writes it again"
+    return [CheckResult(STALE_CHECK, MANIFEST, False,
+                        f"the export is {stale_said(tuple(stale))}: its files may not be what "
+                        f"the project makes now; {again}")]
+
+
 def export_files_group(context: CheckContext) -> Iterator[Found]:
     """``export files``: :func:`edited_results` of ``context.edited``, the files the check
-    found changed by hand before it read the folder; nothing when it did not look (a
-    ``--scene`` check that wrote the scenes alone, the manifest left as it was)."""
+    found changed by hand before it read the folder, and :func:`stale_results` of
+    ``context.stale``; nothing when it did not look (a ``--scene`` check that wrote the
+    scenes alone, the manifest left as it was)."""
     if context.edited is not None:
-        yield "export files", edited_results(context.folder, context.edited)
+        yield "export files", (edited_results(context.folder, context.edited)
+                               + stale_results(context.folder, context.stale))

@@ -41,6 +41,9 @@ class CheckContext:
         edited: the files of the export changed (``changed``) or removed (``missing``)
             by hand since it was written, by path (:func:`tactcad.export.reuse.export_state`;
             empty for an export the check wrote), or None when not looked at.
+        stale: what the export checked as it is (files edited by hand in it) is older than:
+            the project's files edited since it was written, by name
+            (:func:`tactcad.export.reuse.changed_inputs`); empty when it is current.
         requirements_model: how the requirements are judged: ``auto`` (``verify``'s
             default, a FEM level solved only for a requirement the closed form leaves
             undecided) or a ladder level (``closed-form``: no solve, as ``design --jaw``).
@@ -52,6 +55,7 @@ class CheckContext:
     project: Any = None
     scenes: Sequence[str] | None = None
     edited: Mapping[str, str] | None = None
+    stale: Sequence[str] = ()
     requirements_model: str = "auto"
 
 

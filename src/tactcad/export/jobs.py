@@ -52,6 +52,51 @@ def all_jobs(run: Run, kinds: Sequence[str] = ()) -> list[Job]:
     return jobs
 
 
+# --- what an export is made from: the manifest's "inputs" ------------------------------------
+def export_inputs(run: Run, planned: Sequence[Job] | None = None) -> dict:
+    """What a full export of ``run.project`` is made from, for its manifest's ``inputs``:
+    the project files (each with the sha256 of its validated tables), the shop DXF version
+    and one sha256 over the key of every job of a full export (:func:`all_jobs`), the keys
+    the store of finished jobs reuses a job by. A check that plans the same record from the
+    current files (:func:`tactcad.export.reuse.changed_inputs`) knows the export is older
+    than an edit of any file it reads (rigs, scenes, atlas ...), with no second list.
+
+    Args:
+        run: an export run of the project (its staging folder is not read).
+        planned: ``all_jobs(run)`` where the caller has them already (None: planned here,
+            about 0.2 s).
+
+    Returns:
+        ``{"files": [{"role", "file", "sha256"}], "dxf_version": str, "jobs_sha256": str}``;
+        ``file`` relative to the design file's folder (a path of this machine never).
+    """
+    # the keys of a full export even for a partial one: what a check compares
+    keys = [job.key for job in (all_jobs(run) if planned is None else planned)]
+    return {"files": input_files(run.project),
+            "dxf_version": run.dxf_version or dxf_version_option(),
+            "jobs_sha256": content_key("export-jobs", keys)}
+
+
+def input_files(project) -> list[dict]:
+    """The design, rigs and scenes files of ``project`` that exist (a design made in code has
+    none), each ``{"role", "file", "sha256"}``: its name as the project folder holds it and
+    the sha256 of its validated tables (:attr:`tactcad.design.project.Project.hashes`)."""
+    folder = Path(project.plan.source).parent
+    paths = {"design": project.plan.source, "rigs": project.rigs_file,
+             "scenes": project.scenes_file}
+    return [{"role": role, "file": _named_in(folder, paths[role]), "sha256": sha}
+            for role, sha in project.hashes.items() if paths[role] and sha]
+
+
+def _named_in(folder: Path, path: str) -> str:
+    """``path`` relative to ``folder`` when inside it, else its file name (an export names
+    no path of the machine it was made on)."""
+    try:
+        return Path(path).resolve().relative_to(folder.resolve()).as_posix()
+    except (ValueError, OSError):
+        return Path(path).name
+
+
 # --- the array: part STEP files, the assembly, the wire-EDM profiles --------------------------
 def step_jobs(run: Run, before: list[Job]) -> list[Job]:
     """Each array part's STEP file, then the array's assembly."""

@@ -56,7 +56,7 @@ def register_section(section: ManifestSection) -> None:
     Raises:
         ValueError: the key is taken.
     """
-    if section.key in MANIFEST_SECTIONS or section.key in HEAD or section.key == "files":
+    if section.key in MANIFEST_SECTIONS or section.key in HEAD or section.key in WRITTEN_BY_RUN:
         raise ValueError(f"a manifest section {section.key!r} is registered already")
     MANIFEST_SECTIONS[section.key] = section
 
@@ -73,6 +73,9 @@ def manifest_sections() -> list[ManifestSection]:
 
 #: The keys that come before the files.
 HEAD = ("design", "tactcad_version", "cad_stack", "units")
+#: The keys the export run writes itself: the files, and what the export was made from
+#: (:func:`tactcad.export.jobs.export_inputs`).
+WRITTEN_BY_RUN = ("files", "inputs")
 
 
 def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:

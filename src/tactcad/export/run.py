@@ -39,7 +39,7 @@ from tactcad.export.export_owner import (EarlierExport, default_product_name,
                                          stale_check_results, written_by_tactcad)
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
-from tactcad.export.jobs import all_jobs, scene_jobs
+from tactcad.export.jobs import all_jobs, export_inputs, scene_jobs
 from tactcad.export.manifest import manifest
 from tactcad.export.worker import SessionWorker, Worker, can_fork, worker_jobs
 from tactcad.catalogue.files import MANIFEST
@@ -299,7 +299,8 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             carry_over(out, staging, lambda rel: rel in kept_paths)
             warn_changed_by_hand(out, earlier.changed)
         if with_manifest:
-            man = manifest(project.plan, staging, records)
+            full = jobs if jobs_of is all_jobs else None  # a full export's jobs: not planned twice
+            man = with_inputs(manifest(project.plan, staging, records), export_inputs(run, full))
             man["files"] = in_earlier_order(man["files"], earlier)
             if partial is not None:  # a selection of the jobs (export --only/--part)
                 man["partial"] = partial_with_kept(partial, earlier)
@@ -333,6 +334,18 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
                         builds, run.distinct_parts, len(run.worker_made),
                         [f["path"] for f in earlier.kept])
+
+
+def with_inputs(man: dict, inputs: dict) -> dict:
+    """The manifest with ``inputs`` (:func:`tactcad.export.jobs.export_inputs`) right after
+    its ``design``: what the export was made from, which a check compares with the project's
+    files now (:func:`tactcad.export.reuse.export_state`)."""
+    out: dict = {}
+    for key, value in man.items():
+        out[key] = value
+        if key == "design":
+            out["inputs"] = inputs
+    return out
 
 
 def in_earlier_order(files: list[dict], earlier: EarlierExport) -> list[dict]:
