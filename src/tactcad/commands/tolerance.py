@@ -116,6 +116,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print_report(report, plan.name, wall)
     print_check(fields["tolerances_used"], fields["k_tolerance_check"])
+    for warning in fields["warnings"]:  # a --kobj outside the design's range, as a die's says
+        print(warning)
     return 0
 
 
