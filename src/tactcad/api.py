@@ -1137,7 +1137,7 @@ class DieProject:
         it reads, and the spread against the budget's terms (N/mm; um for the die).
 
         Args:
-            samples: as-built dies drawn (2 ... 10^7; None: 10 000). seed: seed of the draw
+            samples: as-built dies drawn (2 ... 10^6; None: 10 000). seed: seed of the draw
                 (0 ... 2^32 - 1; None: 0). kobj: true object stiffnesses to report (N/mm,
                 each > 0; None: the die's default). distribution: ``uniform`` (the
                 default, as the budget takes a +- bound) or ``normal``.
