@@ -663,3 +663,20 @@ def test_the_requirements_a_design_derives_say_so_and_verify_does_not_call_them_
     assert not any(stated[key] for key in derived)
     assert stated["full_scale_force_N"] and stated["kr_over_km"]
 
+
+@pytest.mark.parametrize("grade", [None, "6061-t6", "17-4PH-H900"])
+def test_every_material_value_a_design_starts_from_is_written_with_its_reason(grade):
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.studies.inverse_design import start_tables
+    from tactcad.vocabulary.material_library import material_grade
+
+    data = start_tables(read_toml(DEFAULT_DESIGN, "design file"), "macro_array", grade=grade)
+    why = data["assumptions"]
+    assert [k for k in data["material"] if k != "name" and f"material.{k}" not in why] == []
+    if grade is not None:  # the library's grade and where its values come from
+        library = material_grade(grade)
+        said = why["material.grade"]
+        assert f"--material {library.name}" in said
+        assert f"E {library.youngs_modulus_MPa:g} MPa" in said
+        assert library.source("youngs_modulus_MPa") in said
+        assert library.source("yield_strength_MPa") in said

@@ -1196,13 +1196,37 @@ def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = 
     if grade is not None:
         from tactcad.vocabulary.material_library import material_grade
 
-        grade = material_grade(grade).name  # "ti-6al-4v-annealed" -> the library's spelling
+        library = material_grade(grade)
+        grade = library.name  # "ti-6al-4v-annealed" -> the library's spelling
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
                                if not k.startswith("material.")}
+        data["assumptions"]["material.grade"] = grade_reason(library)
+    else:  # the base's own material values (an E of its own, say) kept: so said
+        material = data.get("material")
+        own = [key for key in (material if isinstance(material, dict) else {})
+               if key != "name" and f"material.{key}" not in kept]  # not the user's --set
+        data["assumptions"] = {**{f"material.{key}": kept_reason(raw, base_name)
+                                  for key in own}, **data["assumptions"]}
     if pitch_mm is not None:
         data = design_variant(data, pitch_mm=pitch_mm)
     return with_grid(data, rows, columns)
+
+
+def grade_reason(library) -> str:
+    """The reason a design's ``material.grade`` chosen by ``--material`` is written with: the
+    library's grade and where its values come from
+    (:meth:`tactcad.vocabulary.material_library.MaterialGrade.cited`)."""
+    return f"tactcad design --material {library.name}: {library.cited()}."
+
+
+def kept_reason(raw: Mapping[str, Any], base_name: str) -> str:
+    """The reason a value kept from the base design is written with where the base gives
+    none: the base named, unless it is the paper's design (:func:`neutral_assumptions`)."""
+    from tactcad.design.requirements_section import cites_paper
+
+    named = "" if cites_paper(raw) or _mentions_paper(base_name) else f" {base_name}"
+    return f"Kept from the base design{named}, where it is an assumption."
 
 
 def sensing_unit_numbers(plan: Plan) -> list[tuple[int, int]]:
