@@ -167,22 +167,33 @@ def keyword_errors(method: Method) -> Method:
     return cast(Method, called)
 
 
-def array_keywords(name: str) -> list[str]:
-    """The keyword arguments the metal array's :class:`Project` method ``name`` takes (none
-    where the array has no such method)."""
+def array_keywords(name: str) -> dict[str, Any]:
+    """The keyword arguments the metal array's :class:`Project` method ``name`` takes, each
+    with its default (none where the array has no such method)."""
     import inspect
 
     method = getattr(Project, name, None)
     if method is None:
-        return []
-    return [k for k in inspect.signature(method).parameters if k != "self"]
+        return {}
+    return {k: p.default for k, p in inspect.signature(method).parameters.items()
+            if k != "self"}
+
+
+def _is_default(value: Any, default: Any) -> bool:
+    """``value`` is the array keyword's default (as the command takes an option left at its
+    default on a die's file: not given)."""
+    try:
+        return value is default or bool(value == default)
+    except (TypeError, ValueError):  # an array's == answers elementwise
+        return False
 
 
 def refuses_array_keywords(method: Method) -> Method:
     """A :class:`DieProject` method that refuses, by name, a keyword argument the array's
     method of the same name takes and the die's does not (``tolerance(arm_tol=...)``: a die
     has no arms), as ``tactcad tolerance --arm-tol`` on a die's file refuses the option,
-    rather than Python's bare "unexpected keyword argument".
+    rather than Python's bare "unexpected keyword argument"; one given at the array's
+    default is taken as not given, as the command takes an option left at its default.
 
     Args:
         method: the die's method; its parameters are the keywords it takes.
@@ -202,16 +213,18 @@ def refuses_array_keywords(method: Method) -> Method:
     def called(self: "DieProject", *args: Any, **kwargs: Any) -> Any:
         from tactcad.errors import DesignError
 
-        array_only = [k for k in kwargs if k not in own and k in array_keywords(method.__name__)]
-        if array_only:
-            keyword = array_only[0]
+        array = array_keywords(method.__name__)
+        array_only = [k for k in kwargs if k not in own and k in array]
+        refused = [k for k in array_only if not _is_default(kwargs[k], array[k])]
+        if refused:
+            keyword = refused[0]
             takes = ", ".join(own) if own else "no keyword"
             raise DesignError(keyword, kwargs[keyword],
                               f"no value for a die's design ({self.source.name}); a die's "
                               f"{method.__name__}() takes {takes}",
                               f"{keyword} chooses among a metal array's figures; a silicon "
                               "die has its own")
-        return method(self, *args, **kwargs)
+        return method(self, *args, **{k: v for k, v in kwargs.items() if k not in array_only})
 
     return cast(Method, called)
 

@@ -87,6 +87,8 @@ def test_a_die_project_refuses_the_arrays_keywords_by_name():
     from tactcad.errors import DesignError
 
     die = tactcad.load(EXAMPLE)
+    # the array's default is an option not given, as on the command line
+    assert die.tolerance(samples=200, arm_tol=None, reference=None)["samples"] == 200
     shared = [n for n in dir(DieProject) if not n.startswith("_") and callable(
         getattr(DieProject, n)) and callable(getattr(Project, n, None))]
     assert "tolerance" in shared
