@@ -167,6 +167,68 @@ def keyword_errors(method: Method) -> Method:
     return cast(Method, called)
 
 
+def array_keywords(name: str) -> dict[str, Any]:
+    """The keyword arguments the metal array's :class:`Project` method ``name`` takes, each
+    with its default (none where the array has no such method)."""
+    import inspect
+
+    method = getattr(Project, name, None)
+    if method is None:
+        return {}
+    return {k: p.default for k, p in inspect.signature(method).parameters.items()
+            if k != "self"}
+
+
+def _is_default(value: Any, default: Any) -> bool:
+    """``value`` is the array keyword's default (as the command takes an option left at its
+    default on a die's file: not given)."""
+    try:
+        return value is default or bool(value == default)
+    except (TypeError, ValueError):  # an array's == answers elementwise
+        return False
+
+
+def refuses_array_keywords(method: Method) -> Method:
+    """A :class:`DieProject` method that refuses, by name, a keyword argument the array's
+    method of the same name takes and the die's does not (``tolerance(arm_tol=...)``: a die
+    has no arms), as ``tactcad tolerance --arm-tol`` on a die's file refuses the option,
+    rather than Python's bare "unexpected keyword argument"; one given at the array's
+    default is taken as not given, as the command takes an option left at its default.
+
+    Args:
+        method: the die's method; its parameters are the keywords it takes.
+
+    Returns:
+        The method wrapped, its signature kept.
+
+    Raises:
+        DesignError: an array's keyword, naming it, its value and the die's keywords.
+    """
+    import functools
+    import inspect
+
+    own = [k for k in inspect.signature(method).parameters if k != "self"]
+
+    @functools.wraps(method)
+    def called(self: "DieProject", *args: Any, **kwargs: Any) -> Any:
+        from tactcad.errors import DesignError
+
+        array = array_keywords(method.__name__)
+        array_only = [k for k in kwargs if k not in own and k in array]
+        refused = [k for k in array_only if not _is_default(kwargs[k], array[k])]
+        if refused:
+            keyword = refused[0]
+            takes = ", ".join(own) if own else "no keyword"
+            raise DesignError(keyword, kwargs[keyword],
+                              f"no value for a die's design ({self.source.name}); a die's "
+                              f"{method.__name__}() takes {takes}",
+                              f"{keyword} chooses among a metal array's figures; a silicon "
+                              "die has its own")
+        return method(self, *args, **{k: v for k, v in kwargs.items() if k not in array_only})
+
+    return cast(Method, called)
+
+
 def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -> "Project":
     """Read and validate a design file with its rigs and scenes files (those its
     ``[files]`` table names, else ``rigs.toml`` and ``scenes.toml`` beside it;
@@ -1027,6 +1089,7 @@ class DieProject:
         return self._report("strength", model="closed-form")
 
     @keyword_errors
+    @refuses_array_keywords
     def readout(self) -> dict:
         """The piezoresistive read-out, as ``tactcad readout --json`` (ohm, V/N, N)."""
         return self._report("readout")
@@ -1037,27 +1100,32 @@ class DieProject:
         return self._report("modal")
 
     @keyword_errors
+    @refuses_array_keywords
     def budget(self) -> dict:
         """The K_obj error budget, as ``tactcad budget --json`` (relative, 1 sigma)."""
         return self._report("budget")
 
     @keyword_errors
+    @refuses_array_keywords
     def verify(self) -> dict:
         """The verification matrix, as ``tactcad verify --json`` (``passed``, ``matrix``)."""
         return self._report("verify")
 
     @keyword_errors
+    @refuses_array_keywords
     def thermal(self) -> dict:
         """The die's thermal drift, as ``tactcad thermal --json``."""
         return self._report("thermal")
 
     @keyword_errors
+    @refuses_array_keywords
     def crosstalk(self) -> dict:
         """Each beam's reading under a force on every post, as ``tactcad crosstalk
         --json``."""
         return self._report("crosstalk")
 
     @keyword_errors
+    @refuses_array_keywords
     def grasp(self, force_N: float | None = None, angle_deg: float | None = None,
               kobj: float | None = None, coupling: str = "layer",
               profile: str | None = None, slab_thickness_mm: float | None = None,
@@ -1082,6 +1150,7 @@ class DieProject:
                             **_grasp_numbers(given))
 
     @keyword_errors
+    @refuses_array_keywords
     def tolerance(self, samples: int | None = None, seed: int | None = None,
                   kobj: Sequence[float] | None = None, distribution: str | None = None) -> dict:
         """The Monte Carlo of the die's process tolerances (device layer thickness, the
@@ -1090,7 +1159,7 @@ class DieProject:
         it reads, and the spread against the budget's terms (N/mm; um for the die).
 
         Args:
-            samples: as-built dies drawn (2 ... 10^7; None: 10 000). seed: seed of the draw
+            samples: as-built dies drawn (2 ... 10^6; None: 10 000). seed: seed of the draw
                 (0 ... 2^32 - 1; None: 0). kobj: true object stiffnesses to report (N/mm,
                 each > 0; None: the die's default). distribution: ``uniform`` (the
                 default, as the budget takes a +- bound) or ``normal``.
@@ -1111,6 +1180,7 @@ class DieProject:
         return design_head(self.name, self.planned.source)["design"]["sha256"]
 
     @keyword_errors
+    @refuses_array_keywords
     def check(self, out: str | Path | None = None,
               progress: Progress | None = None) -> "CheckReport":
         """Run every check of ``tactcad check`` on the die's export, as the command does
@@ -1139,6 +1209,7 @@ class DieProject:
                            found.export_refusal, None if out is None else str(out))
 
     @keyword_errors
+    @refuses_array_keywords
     def export(self, out: str | Path = "exports", cache: Any = None,
                progress: Progress | None = None) -> int:
         """Write the die's files into ``out`` (masks, wafer, STEP, traveller, drawing, BOM,

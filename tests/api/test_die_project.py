@@ -77,3 +77,30 @@ def test_a_die_projects_tolerance_is_the_commands_json():
     with pytest.raises(DesignError) as err:
         die.tolerance(samples=1)
     assert err.value.field == "samples" and "--" not in str(err.value), str(err.value)
+
+
+def test_a_die_project_refuses_the_arrays_keywords_by_name():
+    import inspect
+
+    import tactcad
+    from tactcad.api import DieProject, Project
+    from tactcad.errors import DesignError
+
+    die = tactcad.load(EXAMPLE)
+    # the array's default is an option not given, as on the command line
+    assert die.tolerance(samples=200, arm_tol=None, reference=None)["samples"] == 200
+    shared = [n for n in dir(DieProject) if not n.startswith("_") and callable(
+        getattr(DieProject, n)) and callable(getattr(Project, n, None))]
+    assert "tolerance" in shared
+    checked = 0
+    for name in shared:
+        own = set(inspect.signature(getattr(DieProject, name)).parameters)
+        for keyword in inspect.signature(getattr(Project, name)).parameters:
+            if keyword in own:
+                continue
+            with pytest.raises(DesignError) as err:  # not Python's TypeError
+                getattr(die, name)(**{keyword: 0.01})
+            assert err.value.field == keyword and f"a die's {name}()" in str(err.value), \
+                str(err.value)
+            checked += 1
+    assert checked >= 4  # tolerance's what-if tolerances and reference at least

@@ -118,3 +118,17 @@ def test_the_apis_numbers_take_numpys_reals_and_refuse_a_bool():
     with pytest.raises(DesignError) as caught:
         project.grasp(force_N=True)
     assert caught.value.field == "force_N"
+
+
+def test_the_metal_and_the_dies_tolerance_records_share_the_keys_of_what_both_give():
+    from conftest import DIE_EXAMPLE
+
+    metal = tactcad.load(str(DESIGN)).tolerance(samples=200, kobj=[2.0, 1000.0])
+    die = tactcad.load(DIE_EXAMPLE).tolerance(samples=200)
+    both = {"design", "source", "samples", "seed", "tolerances", "units", "warnings",
+            "K_obj_range_N_per_mm"}  # what each record says of its own design and draw
+    assert both <= set(metal) and both <= set(die)
+    lo, hi = metal["K_obj_range_N_per_mm"]
+    assert lo < 2.0 < hi < 1000.0  # one K_obj asked inside the range, one outside
+    assert len(metal["warnings"]) == 1 and "--kobj 1000" in metal["warnings"][0]
+    assert die["warnings"] == []  # the die's default K_obj lie in its range

@@ -113,3 +113,53 @@ def test_a_kobj_at_the_searched_ranges_end_is_refused_with_an_open_range(die_fol
     error = json.loads(r.stdout)["error"]
     assert r.returncode == 2 and error["field"] == "--kobj"
     assert error["allowed"].startswith("0.0005 < K_obj < ")
+
+
+def test_the_draw_is_solved_a_chunk_of_dies_at_a_time_with_the_same_statistics(plan,
+                                                                              monkeypatch):
+    # memory bounded by the chunk, not the dies drawn: no coupled solve (the draws' or the
+    # inversion's Newton steps) holds more dies than a chunk, and chunking changes no number
+    from tactcad.products.silicon_die.studies import die_tolerance as dt
+
+    whole = dt.run_die_tolerance(plan, 300, 4, k_obj=[1.0, 3.0]).as_json()
+    solved = []
+    solve = dt.coupled_deflections
+
+    def counted(c_hat, k, k_obj):
+        solved.append(len(k_obj))
+        return solve(c_hat, k, k_obj)
+
+    monkeypatch.setattr(dt, "CHUNK_SAMPLES", 64)
+    monkeypatch.setattr(dt, "coupled_deflections", counted)
+    chunked = dt.run_die_tolerance(plan, 300, 4, k_obj=[1.0, 3.0]).as_json()
+    # (the nominal R(K_obj) table of the inversion is one fixed solve, whatever the draw)
+    assert max(n for n in solved if n != dt.INVERSION_TABLE_POINTS) <= 64 < 300
+    assert json.dumps(chunked) == json.dumps(whole)
+
+
+def test_the_rows_stiffness_at_once_is_the_scalar_closed_form(plan):
+    from tactcad.products.silicon_die.design.mems_die import (beam_stiffness_N_per_mm,
+                                                              beam_stiffnesses_N_per_mm)
+
+    beam = plan.beams[0]
+    t = beam.thickness_um + np.array([-0.5, 0.0, 0.3, 0.0])
+    t[-1] = beam.width_um * 20  # w / t past the root table's end: held at its end value
+    length = beam.length_um + np.array([2.0, 0.0, -2.0, 1.0])
+    at_once = beam_stiffnesses_N_per_mm(plan.youngs_modulus_MPa, beam.width_um, t, length)
+    one_by_one = [beam_stiffness_N_per_mm(plan.youngs_modulus_MPa, beam.width_um, a, b)
+                  for a, b in zip(t, length)]
+    assert at_once == pytest.approx(one_by_one, rel=1e-13)
+    with pytest.raises(ValueError, match="thickness_um"):
+        beam_stiffnesses_N_per_mm(plan.youngs_modulus_MPa, beam.width_um,
+                                  np.array([1.0, -1.0]), np.array([10.0, 10.0]))
+
+
+def test_a_dies_samples_past_its_range_are_refused_naming_the_range():
+    import tactcad
+    from tactcad.errors import DesignError
+    from tactcad.products.silicon_die.studies.die_tolerance import DIE_SAMPLES_RANGE
+
+    die = tactcad.load(EXAMPLE)
+    with pytest.raises(DesignError) as err:
+        die.tolerance(samples=DIE_SAMPLES_RANGE[1] + 1)
+    assert err.value.field == "samples" and f"2 ... {DIE_SAMPLES_RANGE[1]}" in err.value.allowed

@@ -59,6 +59,11 @@ def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_
     assert not [r["requirement"] for r in records if r["verdict"] == "fail"]
     assert [r["verdict"] for r in records if r["requirement"] == "footprint_mm"] == ["pass"]
     assert "sheet.thickness_mm" in found.data["assumptions"]
+    # the grade asked, with the library's sources of its values
+    from tactcad.vocabulary.material_library import material_grade
+
+    said = found.data["assumptions"]["material.grade"]
+    assert material_grade(TI).source("youngs_modulus_MPa") in said and TI in said
 
 
 @pytest.mark.parametrize("columns", [2, 3, 5, 6])

@@ -641,3 +641,42 @@ def test_a_dies_design_as_a_stacked_base_is_refused_in_one_line(tmp_path, monkey
     assert code == 2 and error["field"] == "--design"
     assert "silicon-die" in error["message"] and "errors" not in error["message"]
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_the_requirements_a_design_derives_say_so_and_verify_does_not_call_them_stated(plan):
+    from tactcad.design.requirements_section import DERIVED_BY_DESIGN
+    from tactcad.studies.verification import requirements_of, verification_matrix
+
+    d = design_for_targets(plan, FEASIBLE)
+    why, written = d.data["assumptions"], d.data["requirements"]
+    derived = {"k_tolerance_rel", "kobj_resolution_rel"}  # the prediction's, not asked
+    for key in derived:
+        assert why[f"requirements.{key}"].startswith(DERIVED_BY_DESIGN), key
+    req = requirements_of(d.plan)
+    assert req.stated == {"full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km"}
+    assert derived <= req.written  # still judged as the file gives them
+    assert req.k_tolerance_rel == written["k_tolerance_rel"]
+    assert req.kobj_resolution_rel == written["kobj_resolution_rel"]
+    for key in derived:
+        assert req.reasons[key] == why[f"requirements.{key}"]
+    stated = {r["requirement"]: r["stated"] for r in verification_matrix(d.plan)}
+    assert not any(stated[key] for key in derived)
+    assert stated["full_scale_force_N"] and stated["kr_over_km"]
+
+
+@pytest.mark.parametrize("grade", [None, "6061-t6", "17-4PH-H900"])
+def test_every_material_value_a_design_starts_from_is_written_with_its_reason(grade):
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.studies.inverse_design import start_tables
+    from tactcad.vocabulary.material_library import material_grade
+
+    data = start_tables(read_toml(DEFAULT_DESIGN, "design file"), "macro_array", grade=grade)
+    why = data["assumptions"]
+    assert [k for k in data["material"] if k != "name" and f"material.{k}" not in why] == []
+    if grade is not None:  # the library's grade and where its values come from
+        library = material_grade(grade)
+        said = why["material.grade"]
+        assert f"--material {library.name}" in said
+        assert f"E {library.youngs_modulus_MPa:g} MPa" in said
+        assert library.source("youngs_modulus_MPa") in said
+        assert library.source("yield_strength_MPa") in said

@@ -160,6 +160,32 @@ def stated_requirements(raw: Mapping[str, Any]) -> dict[str, Any]:
     return out
 
 
+#: How a design file says a requirement was derived by ``tactcad design`` from the design's
+#: own prediction, not stated by the lab: the start of its reason under ``[assumptions]``
+#: (``"requirements.k_tolerance_rel" = "Derived by tactcad design ..."``).
+DERIVED_BY_DESIGN = "Derived by tactcad design from the design's own prediction"
+
+
+def derived_requirements(raw: Mapping[str, Any]) -> dict[str, str]:
+    """The ``[requirements]`` values a design file marks as derived by ``tactcad design``
+    (their reason under ``[assumptions]`` starts with :data:`DERIVED_BY_DESIGN`), each with
+    that reason: ``verify`` reports them as derived, not as stated by the lab.
+
+    Args:
+        raw: the design's raw tables.
+
+    Returns:
+        Requirement key -> its reason (empty where the file marks none).
+    """
+    stated = stated_requirements(raw)
+    why = raw.get("assumptions") if isinstance(raw, Mapping) else None
+    if not isinstance(why, Mapping):
+        return {}
+    return {key: why[f"requirements.{key}"] for key in stated
+            if isinstance(why.get(f"requirements.{key}"), str)
+            and why[f"requirements.{key}"].startswith(DERIVED_BY_DESIGN)}
+
+
 def requirements_source(raw: Mapping[str, Any]) -> str | None:
     """The ``requirements.source`` citation of a design, or None."""
     table = raw.get("requirements") if isinstance(raw, Mapping) else None

@@ -1765,6 +1765,11 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
         **({"requirements.max_grasp_force_N": "Asked (--max-grasp-force)."}
            if "max_grasp_force_N" in d["requirements"] else {}),
     })
+    grade = d.get("material", {}).get("grade")
+    if grade and "material.grade" not in why:  # the library's grade, with its sources
+        from tactcad.vocabulary.material_library import material_grade
+
+        why["material.grade"] = f"The comb's material: {material_grade(grade).cited()}."
     d["assumptions"] = why
     return d
 

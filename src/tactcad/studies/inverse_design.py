@@ -1196,13 +1196,37 @@ def start_tables(raw: Mapping[str, Any], base_name: str, *, grade: str | None = 
     if grade is not None:
         from tactcad.vocabulary.material_library import material_grade
 
-        grade = material_grade(grade).name  # "ti-6al-4v-annealed" -> the library's spelling
+        library = material_grade(grade)
+        grade = library.name  # "ti-6al-4v-annealed" -> the library's spelling
         data["material"] = {"name": grade, "grade": grade}
         data["assumptions"] = {k: v for k, v in data.get("assumptions", {}).items()
                                if not k.startswith("material.")}
+        data["assumptions"]["material.grade"] = grade_reason(library)
+    else:  # the base's own material values (an E of its own, say) kept: so said
+        material = data.get("material")
+        own = [key for key in (material if isinstance(material, dict) else {})
+               if key != "name" and f"material.{key}" not in kept]  # not the user's --set
+        data["assumptions"] = {**{f"material.{key}": kept_reason(raw, base_name)
+                                  for key in own}, **data["assumptions"]}
     if pitch_mm is not None:
         data = design_variant(data, pitch_mm=pitch_mm)
     return with_grid(data, rows, columns)
+
+
+def grade_reason(library) -> str:
+    """The reason a design's ``material.grade`` chosen by ``--material`` is written with: the
+    library's grade and where its values come from
+    (:meth:`tactcad.vocabulary.material_library.MaterialGrade.cited`)."""
+    return f"tactcad design --material {library.name}: {library.cited()}."
+
+
+def kept_reason(raw: Mapping[str, Any], base_name: str) -> str:
+    """The reason a value kept from the base design is written with where the base gives
+    none: the base named, unless it is the paper's design (:func:`neutral_assumptions`)."""
+    from tactcad.design.requirements_section import cites_paper
+
+    named = "" if cites_paper(raw) or _mentions_paper(base_name) else f" {base_name}"
+    return f"Kept from the base design{named}, where it is an assumption."
 
 
 def sensing_unit_numbers(plan: Plan) -> list[tuple[int, int]]:
@@ -1385,14 +1409,17 @@ def _design_from_tables(data: dict[str, Any], targets: Targets, *, name: str = "
             f"tactcad design: {t:g} mm by the web rule at {targets.full_scale_force_N:g} N: "
             f"{WEB_RULE}.")
     with_reasons_that_hold(data, carried)
-    data["requirements"] = requirements_table(targets, data)
+    data["requirements"], derived = requirements_table(targets, data)
+    data.setdefault("assumptions", {}).update(
+        {f"requirements.{key}": reason for key, reason in derived.items()})
     new_plan = plan_from_dict(data, source="<inverse design>")
     return InverseDesign(targets, data, new_plan, refs, web_changed, a_r, a_m,
                          max_full_scale_force_N=f_max, binding_limits=bind,
                          notch_changed=notch_changed)
 
 
-def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, Any]:
+def requirements_table(targets: Targets,
+                       data: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
     """The ``[requirements]`` table an inverse design writes: the targets, the K
     band over the web tolerance and the K_obj resolution the elements reach
     over the range at the full-scale force, each element read through the
@@ -1402,8 +1429,13 @@ def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, A
     (:mod:`tactcad.studies.verification`).
 
     Returns:
-        The table; keys of :data:`tactcad.design.requirements_section.REQUIREMENT_KEYS`.
+        (the table, keys of :data:`tactcad.design.requirements_section.REQUIREMENT_KEYS`;
+        the reasons of the two it derives from the prediction, ``k_tolerance_rel`` and
+        ``kobj_resolution_rel``, by key, each starting with
+        :data:`~tactcad.design.requirements_section.DERIVED_BY_DESIGN` so that ``verify``
+        does not call them stated by the lab).
     """
+    from tactcad.design.requirements_section import DERIVED_BY_DESIGN
     from tactcad.studies.verification import (element_figures, k_band_requirement,
                                               kobj_resolution_requirement, sensing_units)
 
@@ -1411,12 +1443,27 @@ def requirements_table(targets: Targets, data: Mapping[str, Any]) -> dict[str, A
     lo, hi = targets.k_obj_range_N_per_mm
     F = targets.full_scale_force_N
     units = sensing_units(plan, element_figures(plan, "closed-form"))
-    resolution, _ = kobj_resolution_requirement(units, (lo, hi), F)
-    return {"full_scale_force_N": float(F),
-            "kobj_range_N_per_mm": [float(lo), float(hi)],
-            "kr_over_km": float(targets.kr_over_km),
-            "k_tolerance_rel": k_band_requirement(plan)[0],
-            "kobj_resolution_rel": resolution}
+    resolution, worst = kobj_resolution_requirement(units, (lo, hi), F)
+    k_band, band = k_band_requirement(plan)
+    table = {"full_scale_force_N": float(F),
+             "kobj_range_N_per_mm": [float(lo), float(hi)],
+             "kr_over_km": float(targets.kr_over_km),
+             "k_tolerance_rel": k_band,
+             "kobj_resolution_rel": resolution}
+    # what the design reaches, not what the lab asked: a lab's own value replaces the reason
+    reasons = {
+        "k_tolerance_rel": (
+            f"{DERIVED_BY_DESIGN}: the largest K change over the web tolerance, "
+            f"{100 * band:.3g} % (closed form), padded by its error and rounded up; state the "
+            "band your use needs in its place (and this reason with it) to hold the design "
+            "to it."),
+        "kobj_resolution_rel": (
+            f"{DERIVED_BY_DESIGN}: the worst K_obj resolution over {lo:g}-{hi:g} N/mm at "
+            f"the full-scale force {F:g} N, {100 * worst:.3g} % (closed form, each element "
+            "read through the design's [readout] chain), padded by its error and rounded up; "
+            "state the resolution your use needs in its place (and this reason with it) to "
+            "hold the design to it.")}
+    return table, reasons
 
 
 def report_points(targets: Targets, n: int = REPORT_POINTS) -> np.ndarray:

@@ -151,8 +151,9 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
 
     Returns:
         (the report, whose ``as_json()`` with the fields is ``tactcad tolerance --json``;
-        the fields ``source``, ``tolerances_used``, ``k_tolerance_check``; the draw's wall
-        time, s).
+        the fields ``design`` (its name), ``source``, ``K_obj_range_N_per_mm``, ``warnings``
+        (a ``kobj`` outside that range, as a die's record has them), ``tolerances_used``,
+        ``k_tolerance_check``; the draw's wall time, s).
 
     Raises:
         DesignError: a what-if tolerance that lets its feature vanish, a bad ``reference``,
@@ -175,10 +176,32 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
     report = run_tolerance(plan, samples=samples, seed=seed, tolerances=tol, k_obj=k_obj,
                            reference=reference, mapper=mapper)
     wall = time.perf_counter() - t0
-    check = band_check(plan, report, requirements_of(plan).k_tolerance_rel)
-    fields = {"source": "design", "tolerances_used": tolerances_used(plan, tol),
-              "k_tolerance_check": check}
+    req = requirements_of(plan)
+    check = band_check(plan, report, req.k_tolerance_rel)
+    fields = {"design": plan.name, "source": "design",
+              "K_obj_range_N_per_mm": list(req.kobj_range_N_per_mm),
+              "warnings": kobj_range_warnings(kobj or (), req.kobj_range_N_per_mm),
+              "tolerances_used": tolerances_used(plan, tol), "k_tolerance_check": check}
     return report, fields, wall
+
+
+def kobj_range_warnings(kobj: Sequence[float], kobj_range: Sequence[float]) -> list[str]:
+    """One warning per true K_obj asked (``--kobj``) outside the design's required K_obj
+    range, as a die's tolerance and every grasp say it
+    (:func:`tactcad.in_use.grasp_experiment.kobj_range_warning`).
+
+    Args:
+        kobj: the true object stiffnesses asked (N/mm). kobj_range: the design's (lo, hi)
+            K_obj range (N/mm).
+
+    Returns:
+        The warnings, in the order asked (empty when every value lies in the range).
+    """
+    from tactcad.in_use.grasp_experiment import kobj_range_warning
+
+    lo, hi = kobj_range
+    found = (kobj_range_warning(k, (lo, hi)) for k in kobj)
+    return [w for w in found if w]
 
 
 def tolerances_used(plan, tol) -> dict:

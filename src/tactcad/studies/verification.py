@@ -44,8 +44,10 @@ import numpy as np
 
 from tactcad.vocabulary.rounding import clean as _clean, round_down, round_up
 from tactcad.design.array_plan import Plan
-from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper, requirements_source,
-                                         stated_footprint, stated_number, stated_requirements)
+from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper,
+                                                 derived_requirements, requirements_source,
+                                                 stated_footprint, stated_number,
+                                                 stated_requirements)
 from tactcad.mechanics.stack_crosstalk import crosstalk_records
 from tactcad.mechanics.verdicts import VERDICTS, deciding_item, judged, verdict  # noqa: F401 (API)
 from tactcad.studies.resonance import resonance_records, resonance_summary
@@ -70,7 +72,10 @@ class Requirements:
         kr_over_km_tolerance_rel: how far below ``kr_over_km`` a row's K_r / K_m may lie
             (the requirement's own band; default :data:`KR_OVER_KM_BAND_REL`).
         reasons: per key, "stated in the design file" or the derivation.
-        stated: the keys the design file states.
+        stated: the keys the lab states in the design file (not those the file marks as
+            derived by ``tactcad design``, :func:`derived_requirements`).
+        written: every key the design file gives a value, stated or so derived (the values
+            judged as the file gives them).
         source: the file's citation (``requirements.source``) or None.
         cites_paper: True for the paper's design.
     """
@@ -82,6 +87,7 @@ class Requirements:
     kobj_resolution_rel: float
     reasons: Mapping[str, str] = field(default_factory=dict)
     stated: frozenset = frozenset()
+    written: frozenset = frozenset()
     source: str | None = None
     cites_paper: bool = False
     footprint_mm: tuple[float, ...] | None = None
@@ -433,12 +439,13 @@ def _requirements_from(plan: Plan, figures: Figures | None,
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
 
     stated = stated_requirements(plan.raw)
+    derived = derived_requirements(plan.raw)  # written by tactcad design, not the lab's
     fig = figures if figures is not None and figures.model == "closed-form" \
         else element_figures(plan, "closed-form")
     if fig is not figures:  # units read at another level are not the closed form's
         units, kept = None, None
     values: dict[str, Any] = dict(stated)
-    reasons = {k: "stated in the design file" for k in stated}
+    reasons = {k: derived.get(k, "stated in the design file") for k in stated}
     if "full_scale_force_N" not in values:
         b = binding(plan_limits(plan, "closed-form", fig.stresses, fig.k_error))
         values["full_scale_force_N"] = round_down(b.force_N)
@@ -478,7 +485,7 @@ def _requirements_from(plan: Plan, figures: Figures | None,
         kr_over_km=float(values["kr_over_km"]), k_tolerance_rel=float(values["k_tolerance_rel"]),
         kobj_resolution_rel=float(values["kobj_resolution_rel"]),
         reasons={k: reasons[k] for k in (*REQUIREMENT_KEYS, "kr_over_km_tolerance_rel")},
-        stated=frozenset(stated),
+        stated=frozenset(stated) - frozenset(derived), written=frozenset(stated),
         source=requirements_source(plan.raw), cites_paper=cites_paper(plan.raw),
         footprint_mm=stated_footprint(plan.raw))
 
@@ -707,13 +714,13 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, error,
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
                        "closed-form", band <= req.k_tolerance_rel))
-    if units.read or KOBJ_KEYS & req.stated:
+    if units.read or KOBJ_KEYS & req.written:
         out.extend(kobj_records(units, req, F, model, kept))
     # else: no row has an element softer than its reference, so the design reads no K_obj
     # and states no K_obj target: there is nothing of K_obj to verify (derived, none applies)
     from tactcad.studies.tolerance_budget import toleranced_band_record
 
-    derive = None if "k_tolerance_rel" in req.stated else \
+    derive = None if "k_tolerance_rel" in req.written else \
         (lambda band: padded_band_requirement(band, error))
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, error, derive))
     if req.footprint_mm is not None:

@@ -118,6 +118,17 @@ class MaterialGrade:
         note = dict(self.unsourced).get(field)
         return f"unsourced: {note}" if note else self.source(field)
 
+    def cited(self) -> str:
+        """The grade in words with where its values come from, for a design file's reason:
+        ``the material library's grade 6061-T6, Aluminium alloy 6061 ... (tactcad's
+        data/materials.toml, every value with its source): E 68900 MPa (ASM Handbook ...),
+        yield strength 276 MPa (ASM Handbook ...)`` (MPa)."""
+        return (f"the material library's grade {self.name}, {self.description} (tactcad's "
+                f"data/{MATERIALS_FILE}, every value with its source): E "
+                f"{self.youngs_modulus_MPa:g} MPa ({self.provenance('youngs_modulus_MPa')}), "
+                f"yield strength {self.yield_strength_MPa:g} MPa "
+                f"({self.provenance('yield_strength_MPa')})")
+
 
 @dataclass(frozen=True)
 class StrainGauge:

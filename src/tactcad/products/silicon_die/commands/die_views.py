@@ -426,9 +426,12 @@ def _tolerance(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     import time
 
     from tactcad.in_use.grasp_experiment import kobj_range_warning
-    from tactcad.products.silicon_die.studies.die_tolerance import (DieTolerances, report_lines,
+    from tactcad.products.silicon_die.studies.die_tolerance import (DieTolerances,
+                                                                    check_die_samples,
+                                                                    report_lines,
                                                                     run_die_tolerance)
 
+    check_die_samples(args.samples)  # before the die is planned: a refusal at once
     plan = _planned(design, args).plan
     tol = DieTolerances.of_plan(plan, args.distribution or "uniform")
     t0 = time.perf_counter()

@@ -783,6 +783,38 @@ def beam_stiffness_N_per_mm(youngs_modulus_MPa: float, width_um: float, thicknes
     return 1.0 / (bending + _shear_compliance_mm_per_N(width_um, thickness_um, length_um))
 
 
+def beam_stiffnesses_N_per_mm(youngs_modulus_MPa: float, width_um: float,
+                              thickness_um: np.ndarray, length_um: np.ndarray) -> np.ndarray:
+    """:func:`beam_stiffness_N_per_mm` of one beam width over arrays of thicknesses and
+    lengths at once (a Monte Carlo's drawn dies): the same closed form, element by element,
+    in numpy (equal to the scalar's to rounding).
+
+    Args:
+        youngs_modulus_MPa: E along the beam (MPa). width_um: w (um).
+        thickness_um, length_um: t and L (um), arrays of one shape, each > 0.
+
+    Returns:
+        K (N/mm), the arrays' shape.
+
+    Raises:
+        ValueError: a modulus or width not a finite number above 0, or a thickness or length
+            not finite and above 0 (the first such named).
+    """
+    _positive(youngs_modulus_MPa=youngs_modulus_MPa, width_um=width_um)
+    t = np.asarray(thickness_um, dtype=float)
+    length = np.asarray(length_um, dtype=float)
+    for name, values in (("thickness_um", t), ("length_um", length)):
+        bad = ~(np.isfinite(values) & (values > 0))
+        if bad.any():
+            raise ValueError(f"{name} = {values[bad].flat[0]!r}: allowed a finite number above 0")
+    logs, cs = _root_extension_table(ROOT_EXTENSION_OVER_T)
+    # np.interp holds the table's end values outside it, as root_extension_um does
+    root = np.interp(np.log(width_um / t), logs, cs) * t
+    bending = 1.0 / clamped_beam_stiffness_N_per_mm(youngs_modulus_MPa, width_um, t,
+                                                    length + root)
+    return 1.0 / (bending + _shear_compliance_mm_per_N(width_um, t, length))
+
+
 def length_for_stiffness_um(youngs_modulus_MPa: float, width_um: float, thickness_um: float,
                             k_N_per_mm: float) -> float:
     """L (um) at which a beam of width w, thickness t (um) on its frame has K (N/mm): the
