@@ -559,3 +559,16 @@ def test_a_command_line_imports_only_its_own_command_module():
     full = cli.build_parser(["exprt"])
     sub = next(a for a in full._actions if isinstance(a, argparse._SubParsersAction))
     assert set(sub.choices) == set(cli.COMMANDS)
+
+
+def test_stiffness_says_which_strain_is_a_magnitude_and_which_is_signed(capsys):
+    """The face strain (a magnitude) beside the grid strain (signed) must not read as two
+    signs of one face: the text says which is which, as the JSON's values are."""
+    assert cli.main(["stiffness", "--element", "1", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert cli.main(["stiffness", "--element", "1"]) == 0
+    lines = {line.split()[0] + " " + line.split()[1]: line
+             for line in capsys.readouterr().out.splitlines() if "strain" in line}
+    assert doc["face_strain_per_N"] > 0 and "magnitude" in lines["face strain"]
+    assert doc["grid_strain_per_N"] < 0 and "signed" in lines["grid strain"]
+    assert "magnitude" not in lines["grid strain"]

@@ -90,11 +90,12 @@ def run_stiffness(args: argparse.Namespace) -> int:
               + ("  (with its bonded gauge's glue line and carrier; `tactcad readout` states "
                  "how much they add)" if with_gauge else ""))
         print(f"  face strain         {r.face_strain_per_N * 1e6:10.2f} microstrain/N"
-              "  (the top face at the notch centre"
+              "  (magnitude; the top face at the notch centre"
               + (", under the gauge's glue line and carrier)" if with_gauge else ")"))
         if grid is not None:
             print(f"  grid strain         {grid * 1e6:10.2f} microstrain/N"
-                  "  (what the gauge reads: its grid's plane averaged over the grid)")
+                  "  (what the gauge reads: its grid's plane averaged over the grid; signed, "
+                  "negative where the tip force compresses the face)")
         print(f"  error estimate      {100 * r.error_estimate_rel:10.3f} %  (K)")
         if grid_error is not None:
             print(f"                      {100 * grid_error:10.3f} %  (grid strain)")
