@@ -304,6 +304,7 @@ def test_design_for_a_die_takes_a_kobj_accuracy_or_pastes_what_it_reaches(tmp_pa
     assert v.returncode == 0 and row["verdict"] == "pass" and row["predicted"] <= float(paste)
 
 
+@pytest.mark.slow  # three whole exports of a die (no store: each builds every file)
 def test_a_dies_export_replaces_its_folder_whole_keeping_the_labs_own_files(die_folder,
                                                                             monkeypatch):
     """As an array's export: the new set is swapped in whole (a file the old export listed
