@@ -344,3 +344,33 @@ def test_a_dies_export_replaces_its_folder_whole_keeping_the_labs_own_files(die_
     r = run_cli("export", "--design", str(die_folder / EXAMPLE.name), "--out", ".", cwd=empty)
     assert r.returncode != 0 and "working folder" in r.stderr and "Traceback" not in r.stderr
     assert not list(empty.iterdir()) and not list(die_folder.glob(".here.*"))
+
+
+@pytest.mark.slow  # a whole export of a die, then one read back from the store
+def test_a_dies_second_export_is_read_from_the_store_byte_for_byte(die_folder, monkeypatch,
+                                                                  capsys):
+    """As an array's warm export: nothing changed, nothing is built again; the files and the
+    printed report are the first run's. A changed design (a --set value) is built afresh."""
+    from tactcad import cli
+    from tactcad.commands import die as die_command
+
+    design, store = str(die_folder / EXAMPLE.name), str(die_folder / "store")
+
+    def export(out: str, *extra: str) -> tuple[int, dict, str]:
+        code = cli.main(["export", "--design", design, "--cache", store, "--out",
+                         str(die_folder / out), *extra])
+        files = {p.relative_to(die_folder / out).as_posix(): p.read_bytes()
+                 for p in (die_folder / out).rglob("*") if p.is_file()}
+        return code, files, capsys.readouterr().out
+
+    first = export("out_a")
+    built = []
+    original = die_command._build_die_export
+    monkeypatch.setattr(die_command, "_build_die_export",
+                        lambda *a, **k: built.append(1) or original(*a, **k))
+    second = export("out_b")
+    assert first[0] == second[0] == 0 and not built
+    assert second[1] == first[1] and len(first[1]) > 10
+    assert second[2].replace("out_b", "out_a") == first[2]
+    changed = export("out_c", "--set", "die.full_scale_force_N=0.008")
+    assert built == [1] and changed[1]["manifest.json"] != first[1]["manifest.json"]

@@ -295,28 +295,9 @@ def with_attach(plan, attach):
 
 def run(args: argparse.Namespace) -> int:
     from tactcad.atomic import carry_over, publish_dir, staging_dir, writing_lock
+    from tactcad.checks.check_result import counts_text
     from tactcad.export.export_owner import written_by_tactcad
-    from tactcad.checks.check_result import counts_text, status_counts
-    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
-    from tactcad.checks.sheet_overlap import sheet_file_results
-    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
-    from tactcad.products.silicon_die.checks.gds_drc import gds_checks
-    from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
     from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.export.die_scene import (mount_bom_rows, mount_solids,
-                                                               write_mount_bom,
-                                                               write_mount_picture,
-                                                               write_mount_step)
-    from tactcad.products.silicon_die.export.die_solid import die_layer_solids, write_die_step
-    from tactcad.products.silicon_die.export.gds_masks import (write_die_gds, write_mask_picture,
-                                                               write_wafer_gds)
-    from tactcad.products.silicon_die.export.traveller import write_traveller
-    from tactcad.products.silicon_die.in_use.die_budget import die_budget, post_height_drawing
-    from tactcad.products.silicon_die.mechanics.die_dynamics import (calculix_beam_check,
-                                                                     closed_form_k_N_per_mm,
-                                                                     die_modes, first_resonance_Hz)
-    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
-    from tactcad.products.silicon_die.studies.die_reports import die_beam_fem3d_kept
 
     planned = plan_of(die_asked(args))
     plan, room, name = planned.plan, planned.room, planned.plan.name
@@ -335,50 +316,19 @@ def run(args: argparse.Namespace) -> int:
     try:
         staging = staging_dir(out)
         made = {k: staging / p.relative_to(out) for k, p in files.items()}
-        for path in made.values():
-            path.parent.mkdir(parents=True, exist_ok=True)
-        write_die_gds(plan, made["masks"])
-        _, dies = write_wafer_gds(plan, made["wafer"])
-        layers = die_layer_solids(plan)  # built once: the die's STEP and its mount read them
-        write_die_step(plan, made["step"], layers)
-        write_mask_picture(made["masks"], made["picture"])
-        solids = mount_solids(plan, mount, layers)
-        write_mount_step(solids, made["scene"], f"{name}_in_jaw")
-        write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
-        write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
-        readout = die_readout(plan)
-        budget = die_budget(plan, readout)
-        made["drawing"].write_text(die_sheet(plan, mount, post_height_drawing(budget)).svg(),
-                                   encoding="utf-8")
-        write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
-                        made["traveller"])
-        checks = (gds_checks(made["masks"], plan)
-                  + traveller_checks(made["traveller"], made["masks"])
-                  + mount_checks(solids, mount, f"{name}_posts")
-                  + sheet_file_results(made["drawing"]) + die_requirement_checks(plan, mount))
-        counts = status_counts(checks)
-        modes = die_modes(plan)
-        fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
-            if args.fe_check else []
-        fem3d = [die_beam_fem3d_kept(plan, b) for b in plan.beams[:: plan.columns]] \
-            if getattr(args, "fem3d", False) else []
-        record = {"design": {"name": name, **(planned.source or {"source": None})},
-                  "die": plan.as_json(), "readout": readout, "jaw": room.label,
-                  "mount": mount.as_json(),
-                  "resonance_Hz": modes_json(modes),
-                  "fe_check": [c.as_json() for c in fe],
-                  "fem3d": [dict(r.as_json(), K_closed_form_error_rel=closed_form_k_N_per_mm(
-                                     plan, _beam_of(plan, r.role), r.frame) / r.k_N_per_mm - 1.0,
-                                 f1_closed_form_error_rel=first_resonance_Hz(
-                                     plan, _beam_of(plan, r.role), r.frame) / r.f1_Hz - 1.0)
-                            for r in fem3d],
-                  "kobj_budget": budget.as_json(),
-                  "wafer_dies": dies, "files": {k: p.relative_to(out).as_posix() for k, p in files.items()},
-                  "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
-                              "detail": c.detail} for c in checks], "counts": counts}
-        made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
-        _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
-                                   mount, getattr(args, "design", None))
+        # --fe-check and --fem3d solve outside the store's key (CalculiX, meshes): made afresh
+        reusable = not (args.fe_check or getattr(args, "fem3d", False))
+        key = die_export_key(planned, mount, getattr(args, "design", None)) if reusable else None
+        kept = fetch_die_export(key, staging) if key else None
+        if kept is None:
+            for path in made.values():
+                path.parent.mkdir(parents=True, exist_ok=True)
+            kept = _build_die_export(args, planned, mount, files, made, staging)
+            if key:
+                keep_die_export(key, staging, kept)
+        record, checks, counts = kept["record"], kept["checks"], kept["counts"]
+        readout, dies, modes, fe, budget = (kept[k] for k in ("readout", "dies", "modes", "fe",
+                                                              "budget"))
         if out.is_dir():  # the lab's own files in the folder stay; the old export's go
             ours = written_by_tactcad(out)
             carry_over(out, staging, lambda rel: rel not in ours)
@@ -401,6 +351,137 @@ def run(args: argparse.Namespace) -> int:
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
                      modes, fe, budget, mount, record["fem3d"]))
     return 1 if counts["failed"] else 0
+
+
+def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, made: dict,
+                      staging: Path) -> dict:
+    """Every file of a die's export written into ``staging`` (``made``: the same names as
+    ``files``, under it) and what the command prints of them.
+
+    Returns:
+        ``{"record", "checks", "counts", "readout", "dies", "modes", "fe", "budget"}``.
+    """
+    from tactcad.checks.check_result import status_counts
+    from tactcad.checks.sheet_overlap import sheet_file_results
+    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
+    from tactcad.products.silicon_die.checks.gds_drc import gds_checks
+    from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
+    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
+    from tactcad.products.silicon_die.export.die_scene import (mount_bom_rows, mount_solids,
+                                                               write_mount_bom,
+                                                               write_mount_picture,
+                                                               write_mount_step)
+    from tactcad.products.silicon_die.export.die_solid import die_layer_solids, write_die_step
+    from tactcad.products.silicon_die.export.gds_masks import (write_die_gds, write_mask_picture,
+                                                               write_wafer_gds)
+    from tactcad.products.silicon_die.export.traveller import write_traveller
+    from tactcad.products.silicon_die.in_use.die_budget import die_budget, post_height_drawing
+    from tactcad.products.silicon_die.mechanics.die_dynamics import (calculix_beam_check,
+                                                                     closed_form_k_N_per_mm,
+                                                                     die_modes, first_resonance_Hz)
+    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
+    from tactcad.products.silicon_die.studies.die_reports import die_beam_fem3d_kept
+
+    plan, room, name, out = planned.plan, planned.room, planned.plan.name, Path(args.out)
+    write_die_gds(plan, made["masks"])
+    _, dies = write_wafer_gds(plan, made["wafer"])
+    layers = die_layer_solids(plan)  # built once: the die's STEP and its mount read them
+    write_die_step(plan, made["step"], layers)
+    write_mask_picture(made["masks"], made["picture"])
+    solids = mount_solids(plan, mount, layers)
+    write_mount_step(solids, made["scene"], f"{name}_in_jaw")
+    write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
+    write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
+    readout = die_readout(plan)
+    budget = die_budget(plan, readout)
+    made["drawing"].write_text(die_sheet(plan, mount, post_height_drawing(budget)).svg(),
+                               encoding="utf-8")
+    write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
+                    made["traveller"])
+    checks = (gds_checks(made["masks"], plan)
+              + traveller_checks(made["traveller"], made["masks"])
+              + mount_checks(solids, mount, f"{name}_posts")
+              + sheet_file_results(made["drawing"]) + die_requirement_checks(plan, mount))
+    counts = status_counts(checks)
+    modes = die_modes(plan)
+    fe = [calculix_beam_check(plan, b) for b in plan.beams[:: plan.columns]] \
+        if args.fe_check else []
+    fem3d = [die_beam_fem3d_kept(plan, b) for b in plan.beams[:: plan.columns]] \
+        if getattr(args, "fem3d", False) else []
+    record = {"design": {"name": name, **(planned.source or {"source": None})},
+              "die": plan.as_json(), "readout": readout, "jaw": room.label,
+              "mount": mount.as_json(),
+              "resonance_Hz": modes_json(modes),
+              "fe_check": [c.as_json() for c in fe],
+              "fem3d": [dict(r.as_json(), K_closed_form_error_rel=closed_form_k_N_per_mm(
+                                 plan, _beam_of(plan, r.role), r.frame) / r.k_N_per_mm - 1.0,
+                             f1_closed_form_error_rel=first_resonance_Hz(
+                                 plan, _beam_of(plan, r.role), r.frame) / r.f1_Hz - 1.0)
+                        for r in fem3d],
+              "kobj_budget": budget.as_json(),
+              "wafer_dies": dies, "files": {k: p.relative_to(out).as_posix() for k, p in files.items()},
+              "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
+                          "detail": c.detail} for c in checks], "counts": counts}
+    made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
+    _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
+                               mount, getattr(args, "design", None))
+    return {"record": record, "checks": checks, "counts": counts, "readout": readout,
+            "dies": dies, "modes": modes, "fe": fe, "budget": budget}
+
+
+def die_export_key(planned, mount, design_file: str | None) -> str:
+    """The store's name for a die's whole export: what every file of it is made from (the
+    plan, its mount in the jaw, the design's source and ``--set`` values, the project's
+    atlas files, the review page's scripts, the file names; the store's own salt adds
+    tactcad's code and the CAD stack).
+
+    Args:
+        planned: the die as planned (:func:`plan_of`). mount: its mount in the jaw.
+        design_file: the design file (None: a die made from targets).
+
+    Returns:
+        A content key (:func:`tactcad.store.content_key`).
+    """
+    from tactcad.export.atlas_view import atlas_identity
+    from tactcad.export.review_assets import assets_identity
+    from tactcad.store import content_key
+
+    return content_key("die-export", planned.plan.as_json(), mount.as_json(),
+                       planned.room.label, planned.source, DIE_FILES, NOT_IN_MANIFEST,
+                       atlas_identity(design_file), assets_identity())
+
+
+def fetch_die_export(key: str, staging: Path) -> dict | None:
+    """A die's export kept under ``key`` by an earlier run, copied into ``staging``, and what
+    the command prints of it; None when the active store keeps none (or no store is open).
+
+    Args:
+        key: :func:`die_export_key`. staging: the run's empty staging folder.
+    """
+    from tactcad.store import active_store
+
+    store = active_store()
+    if store is None:
+        return None
+    found, kept = store.recall(key + "-report")
+    if found and isinstance(kept, dict) and store.fetch(key, staging) is not None:
+        return kept
+    for leftover in staging.iterdir():  # a copy cut short leaves nothing for the build
+        shutil.rmtree(leftover) if leftover.is_dir() else leftover.unlink()
+    return None
+
+
+def keep_die_export(key: str, staging: Path, kept: dict) -> None:
+    """Keep a die's export (every file in ``staging``) and what the command prints of it in
+    the active store, for :func:`fetch_die_export`. Best effort, as the store's."""
+    from tactcad.store import active_store
+
+    store = active_store()
+    if store is None:
+        return
+    rel = sorted(p.relative_to(staging).as_posix() for p in staging.rglob("*") if p.is_file())
+    store.keep(key, staging, [{"path": r} for r in rel])
+    store.remember(key + "-report", kept)
 
 
 def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict, solids: dict,
