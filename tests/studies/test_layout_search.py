@@ -8,6 +8,7 @@ The cases are not the paper's: the 2 x 6 Ti-6Al-4V grasper insert (K_r/K_m
 from __future__ import annotations
 
 import json
+import math
 import re
 import shlex
 import tomllib
@@ -261,3 +262,51 @@ def test_a_force_whole_designs_meet_is_not_refused_as_the_binding_force():
     assert force_refusal(0.0816, 0.0816, 0.07, "the targets", "bound by a limit") is None
     e = force_refusal(0.0816, 0.0731, 0.07, "the targets", "bound by a limit")
     assert e.allowed.startswith("at most 0.0731 N")
+
+
+@pytest.mark.parametrize("carried_N", [0.5431, 0.5, 0.5805])
+def test_a_refusals_force_is_the_largest_judged_force_on_the_grid(carried_N):
+    """The force a refusal offers is one the search was asked and designed at, and the next
+    force up the 3-digit grid was refused; none is offered when nothing near designs."""
+    from tactcad.studies.layout_search import force_frontier
+    from tactcad.vocabulary.rounding import round_down
+
+    judged: dict[float, bool] = {}
+
+    def designed(force: float) -> str | None:
+        judged[force] = force <= carried_N
+        return "layout" if judged[force] else None
+
+    force, layout = force_frontier(designed, 0.5805)
+    assert layout == "layout" and judged[force]
+    step = 10.0 ** (math.floor(math.log10(force)) - 2)
+    assert round_down(force + step, 3) > carried_N  # the next grid force up is not carried
+    assert force_frontier(lambda f: None, 0.5805) is None
+
+
+@pytest.mark.slow  # four whole design searches through the command line
+def test_the_refusals_force_pastes_and_is_the_same_for_any_force_asked_above_it(
+        tmp_path, capsys, monkeypatch):
+    """The search tries only the layouts nearest the base design, so the best layout's own
+    largest force could be refused when pasted ("none of the first layouts tried met every
+    rule"), and moved with the force asked. A cap of 3 layouts brings that about on a fast
+    case (K_r/K_m 6 over 5-50 N/mm without the tissue coupling)."""
+    import tactcad.studies.layout_search as layout_search
+
+    monkeypatch.setattr(layout_search, "MAX_DESIGNS", 3)
+    monkeypatch.chdir(tmp_path)  # a design written here would be the next one's base
+    argv = ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--tissue-coupling", "off",
+            "--verify", "none"]
+    offers = []
+    for asked in ("1", "2"):
+        code, doc = _run([*argv, "--full-scale-force", asked, "--out", f"{asked}.toml"], capsys)
+        assert code == 2 and doc["error"]["field"] == "--full-scale-force", doc
+        offers.append(doc["error"]["alternatives"][0]["option"])
+    assert offers[0] == offers[1] and offers[0].startswith("--full-scale-force ")
+    offered = float(offers[0].split()[1])
+    assert f"at most {offered:g} N" in doc["error"]["allowed"]
+    code, doc = _run(_with([*argv, "--full-scale-force", "2", "--out", "pasted.toml"],
+                           offers[0]), capsys)
+    assert code == 0, doc
+    written = tomllib.loads((tmp_path / "pasted.toml").read_text(encoding="utf-8"))
+    assert written["requirements"]["full_scale_force_N"] == offered

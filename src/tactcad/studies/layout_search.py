@@ -28,8 +28,9 @@ Method (closed form throughout; the caller verifies only the design chosen):
 When none passes, the refusal (:class:`InverseDesignError`, a
 :class:`~tactcad.errors.DesignError`) names each asked target that binds, with
 the limit behind it, and the nearest feasible targets as options to paste,
-each checked by a whole design: the largest force any layout carries (bound by
-yield / safety factor, fatigue or the gauge's strain), the smallest footprint
+each checked by a whole design: the largest force the search itself designs at,
+layouts and validation included (:func:`searched_force`; bound by yield / safety
+factor, fatigue or the gauge's strain), the smallest footprint
 (with the force its layout carries where the asked one is out of reach), the
 most columns any bolt's stack holds, the K_r/K_m and K_obj range nearest the
 asked ones, and a derived requirement the targets break (e.g. the K_obj
@@ -43,7 +44,7 @@ from __future__ import annotations
 import copy
 import math
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field as default_of, replace
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
@@ -51,9 +52,11 @@ import numpy as np
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_SPACER_MM, MIN_TIP_GAP_MM, Plan,
                                        plan_from_dict)
 from tactcad.design.domain import longest_grip_mm
+from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 from tactcad.mechanics.correction import range_warnings_unsaid
 from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, cut_process
+from tactcad.vocabulary.rounding import round_down
 from tactcad.studies.design_alternatives import (evaluations_kept, nearest_on_scan,
                                                  largest_feasible_force, nearest_targets,
                                                  relaxing_changes)
@@ -289,6 +292,8 @@ class Attempts:
     mechanics: dict[tuple[float, float], Mechanics | None]
     derived: list[DesignError]
     other: list[DesignError]
+    #: The least full-scale force (N) at which each layout's whole design was refused.
+    refused_at: dict[FreeLayout, float] = default_of(default_factory=dict)
 
 
 def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequence[str] = (),
@@ -319,6 +324,35 @@ def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequenc
     fixed = frozenset(fixed)
     layouts = candidate_layouts(start, fixed, data["element"].get("process"))
     seen = Attempts([c for c in layouts if stack_fits(data, c)], {}, [], [])
+    found = first_design(data, targets, seen, footprint_mm, envelope_of, validate, name,
+                         correction)
+    if found is not None:
+        d, layout = found
+        return _with_reasons(d, start, layout, footprint_mm)
+    raise refusal(data, targets, start, seen, fixed, footprint_mm, envelope_of, validate, name,
+                  correction)
+
+
+def first_design(data: Mapping[str, Any], targets: Targets, seen: Attempts,
+                 footprint_mm: Sequence[float] | None, envelope_of: Envelope | None,
+                 validate: Validate | None, name: str, correction
+                 ) -> tuple[InverseDesign, FreeLayout] | None:
+    """The first whole design the search finds at ``targets`` (module docstring, steps
+    3-4): of the layouts in ``seen.stack_fit`` (nearest the start first) whose elements
+    carry the asked force, at most :data:`MAX_DESIGNS` are tried.
+
+    A layout refused at a force no larger than the one asked (``seen.refused_at``) is
+    counted as tried without judging it again: its whole design only gets harder as the
+    force grows, so a refusal's search for the force it offers skips it.
+
+    Args:
+        data: the start's raw tables. targets: the asked targets. seen: what the search
+            met (filled in). footprint_mm, envelope_of, validate, name, correction: as
+            :func:`searched_design`.
+
+    Returns:
+        (the design, its layout), or None when no layout tried passes.
+    """
     F = targets.full_scale_force_N
     tried = 0
     with warnings.catch_warnings():  # the candidates, not the design written (its own warn)
@@ -331,14 +365,15 @@ def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequenc
                                                          envelope_of):
                 continue
             tried += 1
-            d = _attempt(with_layout(data, layout), targets, name, correction, footprint_mm,
-                         envelope_of, validate, seen)
+            d = None if seen.refused_at.get(layout, math.inf) <= F else _attempt(
+                with_layout(data, layout), targets, name, correction, footprint_mm,
+                envelope_of, validate, seen)
             if d is not None:
-                return _with_reasons(d, start, layout, footprint_mm)
+                return d, layout
+            seen.refused_at[layout] = min(F, seen.refused_at.get(layout, math.inf))
             if tried >= MAX_DESIGNS:
                 break
-    raise refusal(data, targets, start, seen, fixed, footprint_mm, envelope_of, validate, name,
-                  correction)
+    return None
 
 
 def _mechanics(seen: Attempts, data, layout: FreeLayout, targets: Targets, correction
@@ -508,18 +543,31 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
             alternatives += _stiffness_alternatives(data, targets, mechs, correction)
             return _error(errors, alternatives, targets)
         best_c, best_m = max(stiff, key=lambda cm: (cm[1].largest_force_N, -cm[0].distance(start)))
-        force_binds = best_m.largest_force_N < F
+        # the force binds where the best elements fall short of it, or where every layout
+        # tried was refused by the targets alone (none by a rule or a derived requirement)
+        refused_by_targets = footprint_mm is None and not seen.other and not seen.derived
+        short = best_m.largest_force_N < F
+        force_binds = short or refused_by_targets
         if force_binds:
-            f_best = largest_feasible_force(with_layout(data, best_c), targets, correction)
-            error = force_refusal(F, f_best, best_m.largest_force_N, asked,
-                                  f"bound by {_force_limits(best_m, targets)}; at "
-                                  f"{best_c.words()}, the layout whose elements carry most")
+            # sought from the domain's largest force, not the asked one: the same whatever
+            # force was asked above it
+            f_best = largest_feasible_force(with_layout(data, best_c), replace(
+                targets, full_scale_force_N=MAX_FULL_SCALE_FORCE_N), correction)
+            offer = None if footprint_mm is not None or f_best <= 0 else searched_force(
+                data, targets, seen, f_best, validate, name, correction)
+            where = (f"{offer[1].words()}, the layout the search designs at {offer[0]:g} N"
+                     if offer else f"{best_c.words()}, the layout whose elements carry most")
+            # elements that carry the force asked: named only with a force the search designs
+            error = None if not short and not offer else force_refusal(
+                F, offer[0] if offer else f_best, best_m.largest_force_N, asked,
+                f"bound by {_force_limits(best_m, targets)}; at {where}")
             force_binds = error is not None
             errors += [error] if force_binds else []
-            if force_binds and f_best > 0 and footprint_mm is None:
-                alternatives.append(_alt(f"--full-scale-force {_fmt(f_best)}",
-                                         f"the largest full-scale force ({best_c.words()})",
-                                         "target", largest_force_N=f_best))
+            if force_binds and offer:
+                alternatives.append(_alt(
+                    f"--full-scale-force {_fmt(offer[0])}",
+                    f"the largest full-scale force the search designs ({offer[1].words()})",
+                    "target", largest_force_N=offer[0]))
         if footprint_mm is not None:
             errors_fp, alts_fp = _footprint_refusal(data, targets, stiff, footprint_mm,
                                                     envelope_of, validate, name, correction, start)
@@ -543,6 +591,81 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
                                                        better_than_N=best_m.largest_force_N)
                              if a.field != "sheet.thickness_mm"]
     return _error(errors, alternatives, targets)
+
+
+#: A refusal's offered force: the search is asked again at forces this factor apart,
+#: down from the best layout's largest force, at most :data:`OFFER_STEPS_DOWN` times,
+#: then the last step is halved :data:`OFFER_HALVINGS` times.
+OFFER_STEP = 0.97
+OFFER_STEPS_DOWN = 6
+OFFER_HALVINGS = 4
+
+
+def searched_force(data: Mapping[str, Any], targets: Targets, seen: Attempts, start_N: float,
+                   validate: Validate | None, name: str, correction
+                   ) -> tuple[float, FreeLayout] | None:
+    """The largest full-scale force (N, 3 significant digits, rounded down) at which the
+    search itself designs (:func:`first_design`, layout and validation included), sought
+    from ``start_N`` (:func:`force_frontier`): the force a refusal offers to paste.
+
+    A layout's elements may carry more than the search reaches: only the
+    :data:`MAX_DESIGNS` layouts nearest the start that pass the force screen are tried,
+    so the best layout's own largest force may be refused when pasted.
+
+    Args:
+        data: the start's raw tables. targets: the asked targets (their force unused).
+        seen: the asked search's attempts (its layouts' mechanics and refusals are reused).
+        start_N: where the search for the force starts (N): the best layout's largest force.
+        validate, name, correction: as :func:`searched_design`.
+
+    Returns:
+        (force N, the layout the search designs there), or None when the search designs
+        at none of the forces tried.
+    """
+    def designed_layout(force_N: float) -> FreeLayout | None:
+        again = Attempts(seen.stack_fit, seen.mechanics, [], [], seen.refused_at)
+        found = first_design(data, replace(targets, full_scale_force_N=force_N), again, None,
+                             None, validate, name, correction)
+        return None if found is None else found[1]
+
+    return force_frontier(designed_layout, start_N)
+
+
+def force_frontier(designed: Callable[[float], Any], start_N: float
+                   ) -> tuple[float, Any] | None:
+    """The largest force on the 3-significant-digit grid at which ``designed`` answers
+    (not None), found from ``start_N`` alone, so the same for any force asked above it:
+    ``start_N`` rounded down, then steps of :data:`OFFER_STEP` down until one designs, then
+    the last step halved on the grid. Every force returned was itself judged.
+
+    Args:
+        designed: force (N) -> what designs there (e.g. its layout), or None.
+        start_N: the force to start from (N, > 0).
+
+    Returns:
+        (force N, ``designed``'s answer there), or None when none of the
+        :data:`OFFER_STEPS_DOWN` forces tried designs.
+    """
+    refused = None
+    force = round_down(start_N, 3)
+    for _ in range(OFFER_STEPS_DOWN):
+        got = designed(force)
+        if got is not None:
+            break
+        refused, force = force, round_down(force * OFFER_STEP, 3)
+    else:
+        return None
+    best = (force, got)
+    for _ in range(OFFER_HALVINGS if refused is not None else 0):
+        mid = round_down(0.5 * (best[0] + refused), 3)
+        if mid <= best[0]:
+            break  # the grid has no force between them
+        got = designed(mid)
+        if got is not None:
+            best = (mid, got)
+        else:
+            refused = mid
+    return best
 
 
 #: What each nearest target of :func:`tactcad.studies.design_alternatives.nearest_targets` is.
