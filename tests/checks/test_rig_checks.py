@@ -215,3 +215,33 @@ def test_a_catalogue_model_with_another_models_range_fails_naming_the_key():
     assert 'model = "Mark-10 M5-025", range_N = 1.0, resolution_N = 0.0002' in gauge.detail
     lab_own = _rigs_with(project, force_gauge={"model": "our lab's 0.5 N gauge"})
     assert rig_checks(project.plan, lab_own)[1].passed  # not in the catalogue: its values stand
+
+
+def test_a_kit_whose_stiffer_samples_overload_the_rig_names_the_weights_to_set():
+    # K_obj 5 ... 50 N/mm: the suggested, stiffer kit loads the most loaded element more
+    # per newton, and the example's 4 x 5 g reach the 0.1 N rating with the old kit already
+    from tactcad.vocabulary.schema import read_toml
+
+    project = tactcad.load(EXAMPLE, set={"requirements.kobj_range_N_per_mm": [5.0, 50.0]})
+    data = read_toml(EXAMPLE.parent / "rigs.toml", "rigs file")
+    load, gauge, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert load.passed and not kit.passed
+    assert "with them the evaluation rig's top load puts" in kit.detail
+    data["sample"]["stiffness_N_per_mm"] = [float(k) for k in
+                                            kit.detail.split("e.g. [")[1].split("]")[0].split(", ")]
+    data = _pasted(_pasted(data, kit.detail), gauge.detail)
+    results = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert all(r.passed for r in results), [r.line() for r in results]
+
+
+def test_an_overloading_rigs_suggested_weights_pass_when_pasted():
+    project = tactcad.load(EXAMPLE)
+    from tactcad.vocabulary.schema import read_toml
+
+    data = read_toml(EXAMPLE.parent / "rigs.toml", "rigs file")
+    data["weights"] = {**data["weights"], "mass_g": 100.0, "diameter_mm": 25.0, "count": 3}
+    data["evaluation"] = {**data["evaluation"], "preload_N": 3.235}
+    load, _, _ = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert not load.passed and "[weights] mass_g = " in load.detail
+    results = rig_checks(project.plan, rigs_from_dict(_pasted(data, load.detail), project.plan))
+    assert all(r.passed for r in results), [r.line() for r in results]

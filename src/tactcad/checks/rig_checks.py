@@ -37,8 +37,9 @@ def rig_checks(plan, rigs) -> list[CheckResult]:
     from tactcad.studies.verification import rated_full_scale_force
 
     rated = rated_full_scale_force(plan)
-    return [evaluation_load_check(plan, rigs, rated),
-            force_gauge_check(rigs, rated, samples_after=kit_after_suggestion(plan, rigs)),
+    after = kit_after_suggestion(plan, rigs)
+    return [evaluation_load_check(plan, rigs, rated, samples_after=after),
+            force_gauge_check(rigs, rated, samples_after=after),
             sample_kit_check(plan, rigs, rated)]
 
 
@@ -119,7 +120,8 @@ def sample_kit_check(plan, rigs, rated_N: float | None = None) -> CheckResult:
         return CheckResult("rig sample kit", subject, True, text)
     suggested = suggested_kit(plan)
     rigs_file = rigs.source or "rigs.toml"
-    gauge = "" if rated_N is None else gauge_for_samples(rigs, rated_N, suggested)
+    gauge = "" if rated_N is None else (gauge_for_samples(rigs, rated_N, suggested)
+                                        + weights_for_samples(plan, rigs, rated_N, suggested))
     return CheckResult("rig sample kit", subject, False,
                        f"{text}: the kit does not span it; state samples that do in "
                        f"{rigs_file} [sample] stiffness_N_per_mm, e.g. "
@@ -145,10 +147,47 @@ def gauge_for_samples(rigs, rated_N: float, samples) -> str:
             f"{gauge_setting(fit, rigs.source or 'rigs.toml')}")
 
 
-def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:
+def weights_setting(plan, rated_N: float, samples, rigs_file: str) -> str:
+    """The ``[weights]`` and ``[evaluation]`` keys that keep the evaluation rig within
+    ``rated_N`` (N) over ``samples`` (N/mm), as pasted into ``rigs_file``
+    (:func:`tactcad.studies.rig_sizing.weights_for`), or why none do."""
+    import math
+
+    from tactcad.errors import DesignError
+    from tactcad.studies.rig_sizing import element_loads_per_newton, weights_for
+
+    try:
+        w = weights_for(element_loads_per_newton(plan, samples), rated_N)
+    except DesignError as exc:
+        return f"no stack of calibration weights fits ({exc})"
+    preload = math.floor(w.preload_N * 1e6) / 1e6  # rounded down: within the rating
+    return (f"set {rigs_file} [weights] mass_g = {w.mass_g!r}, diameter_mm = "
+            f"{w.diameter_mm!r}, count = {w.count}, [evaluation] preload_N = {preload!r}")
+
+
+def weights_for_samples(plan, rigs, rated_N: float, samples) -> str:
+    """Words for the sample kit's suggestion: the weights ``samples`` (N/mm) need where the
+    rig's own top load would put more than ``rated_N`` (N) on an element over them ("" where
+    it stays within, states no preload, or is kept beyond the rating by a reason)."""
+    from tactcad.studies.rig_sizing import element_loads_per_newton, evaluation_rig_steps
+
+    steps = evaluation_rig_steps(rigs)
+    if steps is None or rigs.beyond_rating_reason:
+        return ""  # the load check says what to state
+    top = steps[0][-1] * max(element_loads_per_newton(plan, samples).values())
+    if top <= rated_N * (1 + 1e-9):
+        return ""
+    return (f"; with them the evaluation rig's top load puts {top:.3g} N on an element, "
+            f"beyond the rated {rated_N:g} N: "
+            f"{weights_setting(plan, rated_N, samples, rigs.source or 'rigs.toml')}")
+
+
+def evaluation_load_check(plan, rigs, rated_N: float, samples_after=None) -> CheckResult:
     """Fails when the evaluation rig's top load puts more than ``rated_N`` (N)
     on an element, or states no preload; a rig kept beyond the rating
-    (``[evaluation] beyond_rating_reason``) passes, saying so."""
+    (``[evaluation] beyond_rating_reason``) passes, saying so. A failure names the weights
+    to set, sized for ``samples_after`` (N/mm: the samples once check's suggestions are
+    pasted, :func:`kit_after_suggestion`; None: the rigs' own)."""
     from tactcad.studies.rig_sizing import evaluation_rig_load
 
     subject = f"array evaluation rig: {rigs.library['weights'].name}"
@@ -166,9 +205,12 @@ def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:
     reason = rigs.beyond_rating_reason
     if reason:
         return CheckResult("rig load", subject, True, f"{text}; kept: {reason}")
+    samples = list(samples_after) if samples_after is not None else \
+        list(rigs.sample_stiffness_N_per_mm)
     return CheckResult("rig load", subject, False,
-                       f"{text}; lighter weights or a counterbalanced axis (rigs.toml [weights], "
-                       "[evaluation] preload_N), or state [evaluation] beyond_rating_reason")
+                       f"{text}; lighter weights or a counterbalanced axis: "
+                       f"{weights_setting(plan, rated_N, samples, rigs.source or 'rigs.toml')}"
+                       ", or state [evaluation] beyond_rating_reason")
 
 
 def force_gauge_check(rigs, rated_N: float, samples_after=None) -> CheckResult:
