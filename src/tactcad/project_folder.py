@@ -20,7 +20,7 @@ import os
 import re
 import shlex
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 from string import Template
@@ -200,12 +200,14 @@ def companion_tables(plan: Plan) -> dict[str, Mapping[str, Any]]:
 @dataclass(frozen=True)
 class NewProject:
     """What :func:`new_project` wrote: the folder, its design file and every file (relative),
-    and the files of the project the folder held that it removed (``--force``)."""
+    the files of the project the folder held that it removed (``--force``), and notes for
+    the user (rigs made anew because the design's own did not fit it)."""
 
     folder: Path
     design: Path
     files: tuple[str, ...]
     removed: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
 
 
 _FILES_TABLE = re.compile(r"^\s*\[files\]\s*(#.*)?$", re.MULTILINE)
@@ -628,8 +630,10 @@ def new_project(folder: str | Path, *, example: str | None = None,
         example: a shipped example to start from (:func:`examples`; default
             ``ti_array_2x3``); its own rigs and scenes are copied, the rigs named for
             the project (:func:`rigs_named_for_project`).
-        from_design: a design file to start from instead; its rigs and scenes
-            are made for it (samples over its K_obj range).
+        from_design: a design file to start from instead; its own rigs and scenes
+            (named in its ``[files]`` table, else beside it) are copied where the rigs fit
+            it (:func:`rigs_misfits`), else both are made for it (samples over its K_obj
+            range, force gauge and weights sized to its rating), a note saying so.
         force: overwrite the project's files in an existing folder.
 
     Returns:
@@ -679,11 +683,39 @@ def new_project(folder: str | Path, *, example: str | None = None,
                   for kind, f in own.items()}
     if name is not None and companions.get("rigs"):  # the rigs name the project, not the example
         companions["rigs"] = rigs_named_for_project(companions["rigs"], name, source.stem)
+    notes: tuple[str, ...] = ()
+    misfits = rigs_misfits(validated) if from_design is not None and companions.get("rigs") else []
+    if misfits:  # rigs sized for another design (a folder's rigs.toml): made for this one
+        companions = {}  # the scenes too: they name the samples the rigs carry
+        notes = (rigs_remade_note(validated.rigs.source or "rigs.toml", source.name, misfits),)
     own_parts = source.parent / PURCHASED_PARTS if from_design is None else None
-    return write_project(folder, text, f"{name}.toml" if name else source.name, validated.plan,
+    made = write_project(folder, text, f"{name}.toml" if name else source.name, validated.plan,
                          companions=companions, force=force,
                          purchased_parts=own_parts.read_text(encoding="utf-8")
                          if own_parts is not None and own_parts.is_file() else None)
+    return replace(made, notes=notes)
+
+
+def rigs_misfits(project) -> list[str]:
+    """The rig checks (:func:`tactcad.checks.rig_checks.rig_checks`) a project's rigs fail,
+    by name ("rig force gauge", "rig sample kit"); empty when they fit or it has no rigs.
+
+    Args:
+        project: a validated :class:`~tactcad.design.project.Project`.
+    """
+    from tactcad.checks.rig_checks import rig_checks
+
+    if project.rigs is None:
+        return []
+    return [r.check for r in rig_checks(project.plan, project.rigs) if not r.passed]
+
+
+def rigs_remade_note(rigs_file: str, design_file: str, misfits: list[str]) -> str:
+    """The note of ``new --from-design`` when the design's rigs did not fit it and the
+    project's rigs and scenes were made for it instead."""
+    return (f"the rigs {rigs_file} of {design_file} do not fit it ({', '.join(misfits)} fail): "
+            "the project's rigs and scenes are made for it instead (samples over its K_obj "
+            "range, the force gauge and weights sized to its rated full-scale force)")
 
 
 def new_die_project(folder: str | Path, source: Path, *, force: bool = False) -> NewProject:

@@ -151,3 +151,97 @@ def test_the_designs_own_samples_span_its_range_though_cast_to_3_digits():
     data["sample"]["stiffness_N_per_mm"] = design_samples(project.plan)[1:]  # the softest dropped
     *_, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
     assert not kit.passed
+
+
+def _pasted(data: dict, detail: str) -> dict:
+    """The rigs tables with every `[table] key = value, ...` a check's detail says to set
+    pasted in (the values read as TOML, as a user pastes them into the file)."""
+    import re
+    import tomllib
+
+    for table, keys in re.findall(r"\[(\w+)\] ((?:\w+ = [^,;]+(?:, |$))+)", detail):
+        pasted = tomllib.loads("\n".join(keys.split(", ")))
+        data[table] = {**data[table], **pasted}
+    return data
+
+
+def test_the_suggestions_of_one_report_pass_when_all_are_pasted_together():
+    """K_obj 0.5 ... 5 N/mm at 0.122 N on the example's 1 ... 5 N/mm kit and 0.5 N gauge:
+    the gauge the report names must fit the suggested kit (its softest 0.5 N/mm doubles
+    the sample rig's force), not the old one, and name every key to set."""
+    from tactcad.studies.rig_sizing import gauge_need
+    from tactcad.vocabulary.force_gauge_catalogue import choose_force_gauge
+    from tactcad.vocabulary.schema import read_toml
+
+    project = tactcad.load(EXAMPLE, set={"requirements.kobj_range_N_per_mm": [0.5, 5.0],
+                                         "requirements.full_scale_force_N": 0.122})
+    data = read_toml(EXAMPLE.parent / "rigs.toml", "rigs file")
+    _, gauge, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert not gauge.passed and not kit.passed
+    old_fit, _ = choose_force_gauge(gauge_need(0.122, data["sample"]["stiffness_N_per_mm"]))
+    assert f'model = "{old_fit.model}"' not in gauge.detail  # sized for the old kit: fails again
+    for key in ("model", "range_N", "resolution_N"):
+        assert f"[force_gauge] {key} = " in gauge.detail or f", {key} = " in gauge.detail
+    data["sample"]["stiffness_N_per_mm"] = [float(k) for k in
+                                            kit.detail.split("e.g. [")[1].split("]")[0].split(", ")]
+    data = _pasted(data, gauge.detail)
+    results = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert all(r.passed for r in results), [r.line() for r in results]
+
+
+def test_a_kit_suggestion_names_the_gauge_its_samples_need_where_the_rigs_does_not_fit_them():
+    # the 0.5 N gauge reads the 1 ... 5 N/mm kit at 0.09 N (0.45 N) but not 0.5 ... 5 N/mm
+    project = tactcad.load(EXAMPLE, set={"requirements.kobj_range_N_per_mm": [0.5, 5.0],
+                                         "requirements.full_scale_force_N": 0.09})
+    from tactcad.vocabulary.schema import read_toml
+
+    data = read_toml(EXAMPLE.parent / "rigs.toml", "rigs file")
+    _, gauge, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert gauge.passed and not kit.passed
+    assert "with them the force gauge needs range >= 0.9 N" in kit.detail
+    data["sample"]["stiffness_N_per_mm"] = [0.5, 5.0]
+    results = rig_checks(project.plan, rigs_from_dict(_pasted(data, kit.detail), project.plan))
+    assert all(r.passed for r in results), [r.line() for r in results]
+
+
+def test_a_catalogue_model_with_another_models_range_fails_naming_the_key():
+    # `model = "Mark-10 M5-025"` pasted over the 0.5 N gauge's range and resolution
+    project = tactcad.load(EXAMPLE)
+    rigs = _rigs_with(project, force_gauge={"model": "Mark-10 M5-025"})
+    _, gauge, _ = rig_checks(project.plan, rigs)
+    assert not gauge.passed
+    assert "range_N = 0.5 N, the catalogue's Mark-10 M5-025 reads 1 N" in gauge.detail
+    assert "resolution_N = 0.0001 N, the catalogue's Mark-10 M5-025 reads 0.0002 N" in gauge.detail
+    assert 'model = "Mark-10 M5-025", range_N = 1.0, resolution_N = 0.0002' in gauge.detail
+    lab_own = _rigs_with(project, force_gauge={"model": "our lab's 0.5 N gauge"})
+    assert rig_checks(project.plan, lab_own)[1].passed  # not in the catalogue: its values stand
+
+
+def test_a_kit_whose_stiffer_samples_overload_the_rig_names_the_weights_to_set():
+    # K_obj 5 ... 50 N/mm: the suggested, stiffer kit loads the most loaded element more
+    # per newton, and the example's 4 x 5 g reach the 0.1 N rating with the old kit already
+    from tactcad.vocabulary.schema import read_toml
+
+    project = tactcad.load(EXAMPLE, set={"requirements.kobj_range_N_per_mm": [5.0, 50.0]})
+    data = read_toml(EXAMPLE.parent / "rigs.toml", "rigs file")
+    load, gauge, kit = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert load.passed and not kit.passed
+    assert "with them the evaluation rig's top load puts" in kit.detail
+    data["sample"]["stiffness_N_per_mm"] = [float(k) for k in
+                                            kit.detail.split("e.g. [")[1].split("]")[0].split(", ")]
+    data = _pasted(_pasted(data, kit.detail), gauge.detail)
+    results = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert all(r.passed for r in results), [r.line() for r in results]
+
+
+def test_an_overloading_rigs_suggested_weights_pass_when_pasted():
+    project = tactcad.load(EXAMPLE)
+    from tactcad.vocabulary.schema import read_toml
+
+    data = read_toml(EXAMPLE.parent / "rigs.toml", "rigs file")
+    data["weights"] = {**data["weights"], "mass_g": 100.0, "diameter_mm": 25.0, "count": 3}
+    data["evaluation"] = {**data["evaluation"], "preload_N": 3.235}
+    load, _, _ = rig_checks(project.plan, rigs_from_dict(data, project.plan))
+    assert not load.passed and "[weights] mass_g = " in load.detail
+    results = rig_checks(project.plan, rigs_from_dict(_pasted(data, load.detail), project.plan))
+    assert all(r.passed for r in results), [r.line() for r in results]

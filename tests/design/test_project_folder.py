@@ -567,3 +567,63 @@ def test_a_scene_description_with_an_unknown_word_is_refused_naming_it(tmp_path)
         tactcad.load(made.design).validated
     assert "scene.wirecut.description" in str(caught.value) and "$n_elemnts" in str(caught.value)
     assert "$n_elements" in str(caught.value)
+
+
+def _wider_design_beside_the_examples_rigs(folder: Path) -> Path:
+    """A design of K_obj 0.5 ... 5 N/mm at 0.122 N without a [files] table, beside the
+    Ti example's rigs and scenes (sized for 1 ... 5 N/mm at 0.1 N), as `tactcad design
+    --out mine.toml` leaves it in a project made by `tactcad new`."""
+    for name in ("rigs.toml", "scenes.toml"):
+        shutil.copy(EXAMPLES / "ti_array_2x3" / name, folder / name)
+    return _bare_design(folder, lambda t: re.sub(
+        r"kobj_range_N_per_mm = \[[^\]]*\]", "kobj_range_N_per_mm = [0.5, 5.0]",
+        t.replace("full_scale_force_N = 0.1\n", "full_scale_force_N = 0.122\n")))
+
+
+def test_new_from_a_design_whose_rigs_beside_it_do_not_fit_makes_rigs_sized_for_it(tmp_path):
+    from tactcad.checks.rig_checks import rig_checks
+
+    design = _wider_design_beside_the_examples_rigs(tmp_path)
+    made = new_project(tmp_path / "p3", from_design=design)
+    project = tactcad.load(made.design).validated
+    assert project.rigs.sample_stiffness_N_per_mm == (5.0, 1.58, 0.5)
+    results = rig_checks(project.plan, project.rigs)
+    assert all(r.passed for r in results), [r.line() for r in results]
+    [note] = made.notes
+    assert "rig force gauge, rig sample kit fail" in note and "made for it" in note
+
+
+def test_new_from_a_design_whose_rigs_beside_it_fit_copies_them(tmp_path):
+    for name in ("rigs.toml", "scenes.toml"):
+        shutil.copy(EXAMPLES / "ti_array_2x3" / name, tmp_path / name)
+    (tmp_path / "rigs.toml").write_text((tmp_path / "rigs.toml").read_text(encoding="utf-8")
+                                        .replace("height_mm = 10.0", "height_mm = 12.0", 1),
+                                        encoding="utf-8")  # a lab's own edit, to be kept
+    made = new_project(tmp_path / "p", from_design=_bare_design(tmp_path))
+    assert made.notes == ()
+    assert "height_mm = 12.0" in (made.folder / "rigs.toml").read_text(encoding="utf-8")
+
+
+def test_design_into_a_folder_whose_rigs_do_not_fit_warns_with_a_command_that_works(
+        tmp_path, capsys):
+    import shlex
+
+    from tactcad.commands.design import rigs_beside, rigs_misfit_line
+    from tactcad.vocabulary.schema import read_toml
+
+    design = _wider_design_beside_the_examples_rigs(tmp_path)
+    data = read_toml(design, "design file")
+    rigs = rigs_beside(data, tmp_path / "mine.toml", str(tmp_path / "mine.toml"))
+    assert rigs["fits"] is False and rigs["fail"] == ["rig force gauge", "rig sample kit"]
+    line = rigs_misfit_line(rigs)
+    assert line.startswith("warning: rigs: ") and "tactcad new " in line
+    (tmp_path / "mine.toml").write_text(design.read_text(encoding="utf-8"), encoding="utf-8")
+    design.unlink()
+    assert main(shlex.split(rigs["next"])[1:]) == 0  # pasted as printed
+    assert "note: the rigs rigs.toml of mine.toml do not fit it" in capsys.readouterr().out
+    fitting = tmp_path / "fits"
+    fitting.mkdir()
+    for name in ("rigs.toml", "scenes.toml"):
+        shutil.copy(EXAMPLES / "ti_array_2x3" / name, fitting / name)
+    assert rigs_beside(read_toml(_bare_design(fitting), "design file"), fitting / "b.toml",
+                       "b.toml")["fits"] is True

@@ -30,17 +30,69 @@ def rig_group(context: CheckContext) -> Iterator[Found]:
 
 
 def rig_checks(plan, rigs) -> list[CheckResult]:
-    """The evaluation rig's top load and the force gauge against the design's
-    rated full-scale force (each result names the rig, the part, the load and
-    the rating)."""
+    """The evaluation rig's top load, the force gauge and the sample kit against the
+    design's rated full-scale force and K_obj range (each result names the rig, the part,
+    the load and the rating). Where the kit fails, the gauge is sized for the kit it
+    suggests, so that every suggestion of one report holds when all are pasted."""
     from tactcad.studies.verification import rated_full_scale_force
 
     rated = rated_full_scale_force(plan)
-    return [evaluation_load_check(plan, rigs, rated), force_gauge_check(rigs, rated),
-            sample_kit_check(plan, rigs)]
+    after = kit_after_suggestion(plan, rigs)
+    return [evaluation_load_check(plan, rigs, rated, samples_after=after),
+            force_gauge_check(rigs, rated, samples_after=after),
+            sample_kit_check(plan, rigs, rated)]
 
 
-def sample_kit_check(plan, rigs) -> CheckResult:
+def kit_spans(plan, samples) -> bool:
+    """True when ``samples`` (N/mm) span the design's K_obj range (stated or derived),
+    within :data:`SPAN_TOLERANCE`."""
+    from tactcad.studies.verification import requirements_of
+
+    lo, hi = requirements_of(plan).kobj_range_N_per_mm
+    return min(samples) <= lo * (1 + SPAN_TOLERANCE) and max(samples) >= hi * (1 - SPAN_TOLERANCE)
+
+
+def suggested_kit(plan) -> list[float]:
+    """The samples (N/mm, stiffest first) the sample kit check suggests: the design's own,
+    those ``evaluate`` runs over."""
+    from tactcad.studies.design_loads import design_samples
+
+    return sorted(design_samples(plan), reverse=True)
+
+
+def kit_after_suggestion(plan, rigs) -> list[float]:
+    """The samples (N/mm) the rigs hold once check's suggestions are pasted: their own
+    where they span the design's K_obj range, else :func:`suggested_kit`."""
+    own = list(rigs.sample_stiffness_N_per_mm)
+    return own if kit_spans(plan, own) else suggested_kit(plan)
+
+
+def suggested_gauge(model: str, need):
+    """The catalogue gauge a suggestion names for ``need``: the rig's own ``model`` where
+    the catalogue holds it and it fits (its stated values corrected), else the catalogue's
+    choice (:func:`~tactcad.vocabulary.force_gauge_catalogue.choose_force_gauge`).
+
+    Returns:
+        (the gauge, its shortfalls in words: empty when it fits).
+    """
+    from tactcad.vocabulary.force_gauge_catalogue import (catalogue_gauge, choose_force_gauge,
+                                                          gauge_shortfalls)
+
+    own = catalogue_gauge(model)
+    if own is not None and not gauge_shortfalls(own.range_N, own.resolution_N, need):
+        return own, []
+    return choose_force_gauge(need)
+
+
+def gauge_setting(gauge, rigs_file: str) -> str:
+    """Every key a rigs file changes to carry the catalogue ``gauge``, in TOML as pasted
+    under its ``[force_gauge]`` table."""
+    return (f'{rigs_file} [force_gauge] model = "{gauge.model}", range_N = {gauge.range_N!r}, '
+            f"resolution_N = {gauge.resolution_N!r}, "
+            f"stiffness_N_per_mm = {gauge.stiffness_N_per_mm!r}")
+
+
+def sample_kit_check(plan, rigs, rated_N: float | None = None) -> CheckResult:
     """Fails when the rigs' samples (``[sample] stiffness_N_per_mm``, N/mm) do not span the
     design's K_obj range (``requirements.kobj_range_N_per_mm``, stated or derived, N/mm):
     the lab's kit would not test the stiffnesses ``evaluate`` and the design claim.
@@ -48,12 +100,13 @@ def sample_kit_check(plan, rigs) -> CheckResult:
     Args:
         plan: the design's plan.
         rigs: its :class:`~tactcad.design.rig_plan.RigDesign`.
+        rated_N: the design's rated full-scale force (N); given, a failure also names the
+            force gauge the suggested samples need where the rig's own misses them.
 
     Returns:
         The result, naming the samples, the range and, on a failure, samples over it.
     """
     from tactcad.partlib.sample import sample_name
-    from tactcad.studies.design_loads import design_samples
     from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
@@ -63,21 +116,78 @@ def sample_kit_check(plan, rigs) -> CheckResult:
     how = "stated" if "kobj_range_N_per_mm" in req.stated else "derived from the elements"
     text = (f"samples {min(kit):g} ... {max(kit):g} N/mm against the design's K_obj range "
             f"{lo:.4g} ... {hi:.4g} N/mm ({how})")
-    covered = min(kit) <= lo * (1 + SPAN_TOLERANCE) and max(kit) >= hi * (1 - SPAN_TOLERANCE)
-    if covered:
+    if kit_spans(plan, kit):
         return CheckResult("rig sample kit", subject, True, text)
-    suggested = ", ".join(f"{k:g}" for k in sorted(design_samples(plan), reverse=True))
+    suggested = suggested_kit(plan)
+    rigs_file = rigs.source or "rigs.toml"
+    gauge = "" if rated_N is None else (gauge_for_samples(rigs, rated_N, suggested)
+                                        + weights_for_samples(plan, rigs, rated_N, suggested))
     return CheckResult("rig sample kit", subject, False,
                        f"{text}: the kit does not span it; state samples that do in "
-                       f"{rigs.source or 'rigs.toml'} [sample] stiffness_N_per_mm, e.g. "
-                       f"[{suggested}] (the design's own samples, those evaluate runs over), "
-                       "and each scene's sample_stiffness_N_per_mm one of them")
+                       f"{rigs_file} [sample] stiffness_N_per_mm, e.g. "
+                       f"[{', '.join(f'{k:g}' for k in suggested)}] (the design's own samples, "
+                       "those evaluate runs over), and each scene's sample_stiffness_N_per_mm "
+                       f"one of them{gauge}")
 
 
-def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:
+def gauge_for_samples(rigs, rated_N: float, samples) -> str:
+    """Words for the sample kit's suggestion: the force gauge ``samples`` (N/mm) need at
+    ``rated_N`` (N) where the rig's own misses them ("" where it fits)."""
+    from tactcad.studies.rig_sizing import gauge_need
+    from tactcad.vocabulary.force_gauge_catalogue import gauge_shortfalls
+
+    g = rigs.part("force_gauge")
+    need = gauge_need(rated_N, samples)
+    if not gauge_shortfalls(g.range_N, g.resolution_N, need):
+        return ""
+    fit, misses = suggested_gauge(g.model, need)
+    if misses:
+        return f"; with them the force gauge needs {need.words()}, which no catalogue gauge meets"
+    return (f"; with them the force gauge needs {need.words()}: set "
+            f"{gauge_setting(fit, rigs.source or 'rigs.toml')}")
+
+
+def weights_setting(plan, rated_N: float, samples, rigs_file: str) -> str:
+    """The ``[weights]`` and ``[evaluation]`` keys that keep the evaluation rig within
+    ``rated_N`` (N) over ``samples`` (N/mm), as pasted into ``rigs_file``
+    (:func:`tactcad.studies.rig_sizing.weights_for`), or why none do."""
+    import math
+
+    from tactcad.errors import DesignError
+    from tactcad.studies.rig_sizing import element_loads_per_newton, weights_for
+
+    try:
+        w = weights_for(element_loads_per_newton(plan, samples), rated_N)
+    except DesignError as exc:
+        return f"no stack of calibration weights fits ({exc})"
+    preload = math.floor(w.preload_N * 1e6) / 1e6  # rounded down: within the rating
+    return (f"set {rigs_file} [weights] mass_g = {w.mass_g!r}, diameter_mm = "
+            f"{w.diameter_mm!r}, count = {w.count}, [evaluation] preload_N = {preload!r}")
+
+
+def weights_for_samples(plan, rigs, rated_N: float, samples) -> str:
+    """Words for the sample kit's suggestion: the weights ``samples`` (N/mm) need where the
+    rig's own top load would put more than ``rated_N`` (N) on an element over them ("" where
+    it stays within, states no preload, or is kept beyond the rating by a reason)."""
+    from tactcad.studies.rig_sizing import element_loads_per_newton, evaluation_rig_steps
+
+    steps = evaluation_rig_steps(rigs)
+    if steps is None or rigs.beyond_rating_reason:
+        return ""  # the load check says what to state
+    top = steps[0][-1] * max(element_loads_per_newton(plan, samples).values())
+    if top <= rated_N * (1 + 1e-9):
+        return ""
+    return (f"; with them the evaluation rig's top load puts {top:.3g} N on an element, "
+            f"beyond the rated {rated_N:g} N: "
+            f"{weights_setting(plan, rated_N, samples, rigs.source or 'rigs.toml')}")
+
+
+def evaluation_load_check(plan, rigs, rated_N: float, samples_after=None) -> CheckResult:
     """Fails when the evaluation rig's top load puts more than ``rated_N`` (N)
     on an element, or states no preload; a rig kept beyond the rating
-    (``[evaluation] beyond_rating_reason``) passes, saying so."""
+    (``[evaluation] beyond_rating_reason``) passes, saying so. A failure names the weights
+    to set, sized for ``samples_after`` (N/mm: the samples once check's suggestions are
+    pasted, :func:`kit_after_suggestion`; None: the rigs' own)."""
     from tactcad.studies.rig_sizing import evaluation_rig_load
 
     subject = f"array evaluation rig: {rigs.library['weights'].name}"
@@ -95,35 +205,58 @@ def evaluation_load_check(plan, rigs, rated_N: float) -> CheckResult:
     reason = rigs.beyond_rating_reason
     if reason:
         return CheckResult("rig load", subject, True, f"{text}; kept: {reason}")
+    samples = list(samples_after) if samples_after is not None else \
+        list(rigs.sample_stiffness_N_per_mm)
     return CheckResult("rig load", subject, False,
-                       f"{text}; lighter weights or a counterbalanced axis (rigs.toml [weights], "
-                       "[evaluation] preload_N), or state [evaluation] beyond_rating_reason")
+                       f"{text}; lighter weights or a counterbalanced axis: "
+                       f"{weights_setting(plan, rated_N, samples, rigs.source or 'rigs.toml')}"
+                       ", or state [evaluation] beyond_rating_reason")
 
 
-def force_gauge_check(rigs, rated_N: float) -> CheckResult:
+def force_gauge_check(rigs, rated_N: float, samples_after=None) -> CheckResult:
     """Fails when the force gauge's range or resolution misses what the
     calibration and sample rigs read at ``rated_N`` (N) and the rig's stiffest
-    sample. Undecided (not failed) where only the resolution misses and the
-    rig already holds the catalogue's finest gauge of that range: no gauge of
-    the catalogue does better, so whether the calibration resolves the rating
+    sample, or when a catalogue model's stated range or resolution is not the
+    catalogue's (each such key named). Undecided (not failed) where only the resolution
+    misses and the rig already holds the catalogue's finest gauge of that range: no gauge
+    of the catalogue does better, so whether the calibration resolves the rating
     is left to the lab (a finer instrument, or calibration by dead weights);
-    a range that is short always fails (the gauge would be overloaded)."""
+    a range that is short always fails (the gauge would be overloaded).
+
+    Args:
+        rigs: the design's :class:`~tactcad.design.rig_plan.RigDesign`.
+        rated_N: the design's rated full-scale force (N).
+        samples_after: the samples (N/mm) the rigs will hold once check's suggestions are
+            pasted (:func:`kit_after_suggestion`); the gauge a failure suggests is sized for
+            them. None: the rigs' own.
+
+    Returns:
+        The result; a failure names every ``[force_gauge]`` key to set.
+    """
     from tactcad.studies.rig_sizing import gauge_need
-    from tactcad.vocabulary.force_gauge_catalogue import choose_force_gauge, gauge_shortfalls
+    from tactcad.vocabulary.force_gauge_catalogue import catalogue_mismatches, gauge_shortfalls
 
     g = rigs.part("force_gauge")
-    need = gauge_need(rated_N, rigs.sample_stiffness_N_per_mm)
+    own = list(rigs.sample_stiffness_N_per_mm)
+    after = list(samples_after) if samples_after is not None else own
+    need = gauge_need(rated_N, own)
     short = gauge_shortfalls(g.range_N, g.resolution_N, need)
+    stale = catalogue_mismatches(g.model, g.range_N, g.resolution_N)
     subject = "calibration and sample rigs: force_gauge"
     text = f"{g.model} ({g.range_N:g} N, {g.resolution_N:g} N) against {need.words()}"
-    if not short:
+    if not short and not stale:
         return CheckResult("rig force gauge", subject, True, text)
-    fit, misses = choose_force_gauge(need)
+    fit, misses = suggested_gauge(g.model, gauge_need(rated_N, after))
     only_resolution = g.range_N >= need.range_N * (1 - 1e-9)
-    if misses and fit.model == g.model and only_resolution:
+    if short and not stale and misses and fit.model == g.model and only_resolution:
         return CheckResult("rig force gauge", subject, True,
                            f"{text}: {'; '.join(short)}; the catalogue's finest gauge of that "
                            "range: a finer instrument or dead-weight calibration would resolve "
                            "the rating", undecided=True)
-    hint = "; no catalogue gauge fits" if misses else f"; the catalogue's {fit.model} fits"
-    return CheckResult("rig force gauge", subject, False, f"{text}: {'; '.join(short)}{hint}")
+    faults = short + [f"{words} (state the catalogue's value, or the model your lab's gauge is)"
+                      for words in stale]
+    kit = ("" if after == own else
+           f" for the samples the sample kit check suggests ({gauge_need(rated_N, after).words()})")
+    hint = (f"; no catalogue gauge fits{kit}" if misses else
+            f"; the catalogue's {fit.model} fits{kit}: set {gauge_setting(fit, rigs.source or 'rigs.toml')}")
+    return CheckResult("rig force gauge", subject, False, f"{text}: {'; '.join(faults)}{hint}")

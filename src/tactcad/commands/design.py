@@ -404,7 +404,8 @@ def _run(args: argparse.Namespace) -> int:
               f"`tactcad design {' '.join(design_options(args))}`.\n"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
     text = design_text(header, result.data)
-    if folder is None:
+    if folder is None:  # the rigs a design file alone takes are those beside it
+        report["rigs"] = rigs_beside(result.data, path, args.out)
         write_bytes_atomic(path, text.encode("utf-8"))
     else:
         from tactcad.project_folder import write_project
@@ -1732,6 +1733,8 @@ def print_report(r: dict) -> None:
         print(line)
     for line in verification_lines(r.get("verify")):
         print(line)
+    if r.get("rigs") and not r["rigs"]["fits"]:
+        print(rigs_misfit_line(r["rigs"]))
     from tactcad.vocabulary.rounding import round_down
 
     # rounded down: the force printed is one to paste, so it must design
@@ -1740,6 +1743,41 @@ def print_report(r: dict) -> None:
           + "; ".join(r["binding_limits"])
           + f" ({MAX_FORCE_BASIS})")
     print(f"wrote {shown_path(r['out'])}")
+
+
+def rigs_beside(data: dict, path: Path, out: str) -> dict | None:
+    """Whether the rigs file a design written to ``path`` takes (named in its ``[files]``
+    table, else the folder's ``rigs.toml``, perhaps another design's) fits it: check's rigs
+    group, closed form.
+
+    Args:
+        data: the design's tables as written.
+        path: the design file to be written (``--out NEW.toml``).
+        out: ``--out`` as given (the suggested command names it so).
+
+    Returns:
+        None where the folder holds no rigs file for it (rigs are made for it when read);
+        else ``file``, ``fits``, ``fail`` (the failing checks' names) and ``next`` (the
+        ``tactcad new`` command that makes a project with rigs sized for it).
+    """
+    from tactcad.design.project import companion_files, project_with_design_data
+    from tactcad.project_folder import companion_tables, rigs_misfits
+    from tactcad.vocabulary.schema import Problems
+
+    rigs_file = companion_files(path, data, Problems(path.name))["rigs"]
+    if rigs_file is None:
+        return None
+    misfits = rigs_misfits(project_with_design_data(data, path, companions=companion_tables))
+    name = shlex.quote(out.removesuffix(".toml"))
+    return {"file": shown_path(str(rigs_file)), "fits": not misfits, "fail": misfits,
+            "next": f"tactcad new {name} --from-design {shlex.quote(out)}"}
+
+
+def rigs_misfit_line(rigs: dict) -> str:
+    """The report's warning on rigs that do not fit the design (:func:`rigs_beside`)."""
+    return (f"warning: rigs: {rigs['file']}, which the design file takes, does not fit it "
+            f"({', '.join(rigs['fail'])} fail), so `tactcad check` fails; a project with "
+            f"rigs sized for it: {rigs['next']}")
 
 
 def corrected_worst_text(biases: list) -> str:

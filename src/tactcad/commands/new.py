@@ -33,7 +33,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                             "project holds the die design file, a README and a .gitignore)")
     start.add_argument("--from-design", metavar="FILE", default=None,
                        help="start from this design file; its rigs and scenes files are "
-                            "copied where it has them, else made for it")
+                            "copied where it has them and the rigs fit it (check's rigs "
+                            "group passes), else made for it, saying so")
     p.add_argument("--force", action="store_true",
                    help="overwrite the project's files where DIR has them (default: refuse); "
                         "those tactcad wrote for the project DIR held and the new one does not "
@@ -49,8 +50,11 @@ def run(args: argparse.Namespace) -> int:
                        force=args.force)
     if args.json:
         print(json.dumps({"folder": str(made.folder), "design": str(made.design),
-                          "files": list(made.files), "removed": list(made.removed)}))
+                          "files": list(made.files), "removed": list(made.removed),
+                          "notes": list(made.notes)}))
         return 0
+    for note in made.notes:  # the design's own rigs did not fit it: made anew
+        print(f"note: {note}")
     print(f"made {made.folder}/ with {len(made.files)} files:")
     for rel in made.files:
         print(f"  {rel}")

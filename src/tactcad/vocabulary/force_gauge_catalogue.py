@@ -153,3 +153,31 @@ def choose_force_gauge(need: GaugeNeed) -> tuple[ForceGaugeModel, list[str]]:
     ranged = [g for g in gauges if g.range_N >= need.range_N]
     best = min(ranged, key=lambda g: g.resolution_N) if ranged else gauges[-1]
     return best, gauge_shortfalls(best.range_N, best.resolution_N, need)
+
+
+def catalogue_gauge(model: str) -> ForceGaugeModel | None:
+    """The catalogue gauge named ``model`` (as ``[force_gauge] model`` writes it), or None
+    for a gauge the catalogue does not hold (a lab's own)."""
+    return next((g for g in force_gauges() if g.model == model), None)
+
+
+def catalogue_mismatches(model: str, range_N: float, resolution_N: float) -> list[str]:
+    """How a rig's stated range and resolution (N) differ from its catalogue model's, in
+    words naming the key (empty for a model the catalogue does not hold, or one that agrees):
+    a stated range left over from another model would judge the rig on a gauge it lacks.
+
+    Args:
+        model: the rig's ``[force_gauge] model``.
+        range_N: its stated ``range_N`` (N).
+        resolution_N: its stated ``resolution_N`` (N).
+
+    Returns:
+        e.g. ``["range_N = 0.5 N, the catalogue's Mark-10 M5-025 reads 1 N"]``.
+    """
+    gauge = catalogue_gauge(model)
+    if gauge is None:
+        return []
+    stated = {"range_N": (range_N, gauge.range_N), "resolution_N": (resolution_N, gauge.resolution_N)}
+    return [f"{key} = {value:g} N, the catalogue's {model} reads {own:g} N"
+            for key, (value, own) in stated.items()
+            if not math.isclose(value, own, rel_tol=1e-9)]
