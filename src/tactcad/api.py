@@ -19,6 +19,7 @@ Units: mm, N, MPa, N/mm, s.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from functools import cached_property
 from os import PathLike
@@ -131,10 +132,58 @@ def with_keyword_names(exc: Exception, keywords: Iterable[str]) -> Exception:
     return exc
 
 
+#: Set while an API method runs: a method it calls leaves the warnings to it, so one call
+#: gives one record of them.
+_API_CALL: "ContextVar[bool]" = ContextVar("tactcad_api_call", default=False)
+
+
+def with_warnings(result: Any, said: Sequence[str]) -> tuple[Any, list[str]]:
+    """``result`` with the warnings ``said`` during its call joined to its own, each once:
+    a dict's ``warnings`` list (made where it has none, as ``--json`` adds it to the
+    command's object), a dataclass's ``warnings`` field.
+
+    Args:
+        result: an API method's plain result.
+        said: the call's warnings, one line each (alike ones folded, as a command says them).
+
+    Returns:
+        (the result with its warnings, the lines it has no place for).
+    """
+    import dataclasses
+
+    if not said:
+        return result, []
+    if isinstance(result, dict):
+        own = result.get("warnings", [])
+        if isinstance(own, list):
+            return {**result, "warnings": own + [w for w in said if w not in own]}, []
+    elif dataclasses.is_dataclass(result) and not isinstance(result, type):
+        field = {f.name: f for f in dataclasses.fields(result)}.get("warnings")
+        own = getattr(result, "warnings", None)
+        if field is not None and field.init and isinstance(own, (tuple, list)):
+            joined = [*own, *(w for w in said if w not in own)]
+            return replace(result, warnings=type(own)(joined)), []
+    return result, list(said)
+
+
+def plain_warning(text: str, category: type[Warning]) -> Warning:
+    """A warning of ``category`` that says ``text`` (a ``UserWarning`` where the category
+    takes no text alone)."""
+    try:
+        return category(text)
+    except Exception:  # a library's category may want more than a message
+        return UserWarning(text)
+
+
 def keyword_errors(method: Method) -> Method:
     """An API method whose refusals name its keyword arguments, not the command-line
-    options its work shares with a command (:func:`with_keyword_names`), and whose result
-    is plain Python (:func:`plain`).
+    options its work shares with a command (:func:`with_keyword_names`), whose result
+    is plain Python (:func:`plain`), and whose warnings are the result's, as a command's
+    ``--json`` gives them: each warning the work issues is said once, alike ones folded
+    into one line (:class:`tactcad.commands.notices.WarningLines`), and joined to the
+    result's ``warnings`` (:func:`with_warnings`); a result with no place for them (a
+    stiffness, an export) has each line issued once as a warning of the caller's line.
+    None reaches the console with tactcad's own file and source line.
 
     Args:
         method: the method; its parameters are the keyword arguments named.
@@ -147,13 +196,14 @@ def keyword_errors(method: Method) -> Method:
     """
     import functools
     import inspect
+    import warnings
 
+    from tactcad.commands.notices import WarningLines
     from tactcad.errors import COMMAND_LINE_RUN, TactcadError
 
     keywords = [k for k in inspect.signature(method).parameters if k != "self"]
 
-    @functools.wraps(method)
-    def called(*args: Any, **kwargs: Any) -> Any:
+    def answered(*args: Any, **kwargs: Any) -> Any:
         try:
             return plain(method(*args, **kwargs))
         except TactcadError as exc:
@@ -163,6 +213,22 @@ def keyword_errors(method: Method) -> Method:
             if renamed is exc:
                 raise
             raise renamed from None
+
+    @functools.wraps(method)
+    def called(*args: Any, **kwargs: Any) -> Any:
+        if COMMAND_LINE_RUN.get() or _API_CALL.get():  # the command or the outer call says them
+            return answered(*args, **kwargs)
+        notes = WarningLines(echo=False)
+        running = _API_CALL.set(True)
+        try:
+            with notes.capture():
+                result = answered(*args, **kwargs)
+        finally:
+            _API_CALL.reset(running)
+        result, left = with_warnings(result, notes.lines)
+        for text in left:
+            warnings.warn(plain_warning(text, notes.categories[text]), stacklevel=2)
+        return result
 
     return cast(Method, called)
 
@@ -297,14 +363,22 @@ def check_references_stiffer(plan: "Plan") -> None:
     a few milliseconds): it cannot read K_obj. A named reference softer than one of its
     elements, or a row whose stiffest element (its reference, none named) has a twin.
 
+    Warns nothing: K only orders the elements here, and the reports that give K and the
+    gauge strain say where their fits are left.
+
     Raises:
         DesignErrors: one refusal per such reference, naming the stiffnesses and the rule.
     """
+    import warnings
+
     from tactcad.errors import DesignErrors
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import soft_reference_errors
 
-    errors = soft_reference_errors(plan, ladder_stiffness_by_element(plan))
+    with warnings.catch_warnings():  # a fit left by a few % orders no reference differently
+        warnings.simplefilter("ignore")
+        stiffness = ladder_stiffness_by_element(plan)
+    errors = soft_reference_errors(plan, stiffness)
     if errors:
         raise DesignErrors(errors)
 
@@ -1405,12 +1479,15 @@ class Verification:
         records: one dict per requirement, in the matrix's order.
         levels: ``{"model", "seconds", "undecided_before"}`` per level run (``auto``).
         requirements: the requirement values with their reasons.
+        warnings: what the levels warned of, one line each (alike ones folded), as
+            ``tactcad verify --json`` lists them.
     """
 
     model: str
     records: tuple[dict, ...]
     levels: tuple[dict, ...]
     requirements: dict
+    warnings: tuple[str, ...] = ()
 
     @property
     def passed(self) -> bool:
@@ -1443,12 +1520,15 @@ class CheckReport:
         reused_export: the export folder was checked as it was.
         export_refusal: why it was not (None when reused).
         out: the folder checked (None: a temporary one).
+        warnings: what the export and the checks warned of, one line each (alike ones
+            folded), as ``tactcad check`` says them.
     """
 
     groups: tuple[tuple[str, tuple["CheckResult", ...]], ...]
     reused_export: bool
     export_refusal: str | None
     out: str | None
+    warnings: tuple[str, ...] = ()
 
     @property
     def results(self) -> list["CheckResult"]:

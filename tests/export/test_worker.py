@@ -151,6 +151,49 @@ def test_a_hand_over_the_worker_cannot_read_is_a_broken_pool_the_run_answers():
         _run_job("element_a4mm", b"\x80\x04 not a pickle")
 
 
+class _UnpicklableWarning(UserWarning):
+    """A library's warning holding what does not pickle (a function made in place)."""
+
+    def __init__(self, text: str):
+        super().__init__(text)
+        self.hook = lambda: None
+
+
+def test_warnings_a_worker_job_issued_keep_their_error_for_the_runs_closing_line(monkeypatch):
+    """A worker job's warnings come back to the run's process with what they carry beside
+    their text: the closing line on alike gauge-strain warnings gives the largest of their
+    estimated errors (a cold export said 0.0 %), and a warning that cannot be pickled
+    comes back as its text."""
+    import pickle
+    import types
+    import warnings
+    from concurrent.futures import Future
+
+    from tactcad.commands.notices import WarningLines
+    from tactcad.export import worker
+    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
+
+    errors = (0.021, 0.027, 0.024)
+
+    def make(run):
+        for error in errors:
+            warnings.warn(GaugeStrainRangeWarning(f"gauge strain at b/t {error}", error))
+        warnings.warn(_UnpicklableWarning("a library's own warning"))
+        return [{"path": "p", "part": "p", "kind": "test"}]
+
+    job = types.SimpleNamespace(needs=(), key="k", make=make)
+    monkeypatch.setattr(worker, "_INHERITED", {"run": None, "jobs": {"j": job}})
+    sent = pickle.loads(pickle.dumps(worker._run_job("j", pickle.dumps({}))))  # as the pool
+    future: Future = Future()
+    future.set_result(sent)
+    notes = WarningLines(echo=False)
+    with notes.capture():
+        assert worker._JobFuture(future, lambda line: None).result() == sent[0]
+    assert notes.lines == ["gauge strain at b/t 0.021", "a library's own warning",
+                           f"{GaugeStrainRangeWarning.fold_as}: 2 more alike, estimated "
+                           f"error up to {100 * max(errors[1:]):.1f} %"]
+
+
 @pytest.mark.slow
 def test_a_planner_that_cannot_be_sent_leaves_the_run_to_itself(tmp_path):
     """A session worker is told each run's planner by reference: a planner

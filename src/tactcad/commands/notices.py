@@ -51,15 +51,19 @@ class WarningLines:
     A warning whose object has a ``fold_as`` text (one of many alike, e.g. each element
     geometry outside a fit) is shown the first time; the others of that text are counted
     and told in one closing line, with the largest ``error_rel`` they carry.
+    ``categories`` keeps each line's warning category (a closing line: its first warning's).
     """
 
     def __init__(self, echo: bool):
         self.echo = echo
         self.lines: list[str] = []
+        self.categories: dict[str, type[Warning]] = {}
         self.folded: dict[str, dict[str, float]] = {}  # fold -> its other texts' errors
+        self.fold_categories: dict[str, type[Warning]] = {}
 
-    def _add(self, text: str) -> None:
+    def _add(self, text: str, category: type[Warning] = UserWarning) -> None:
         self.lines.append(text)
+        self.categories.setdefault(text, category)
         if self.echo:
             print_heads()
             print(f"tactcad: warning: {text}", file=sys.stderr, flush=True)
@@ -75,14 +79,15 @@ class WarningLines:
             return
         if fold:
             self.folded[fold] = {}
-        self._add(text)
+            self.fold_categories[fold] = category
+        self._add(text, category)
 
     def close_folds(self) -> None:
         """One line per folded kind that had more than its first warning."""
         for fold, errors in self.folded.items():
             if errors:
                 self._add(f"{fold}: {len(errors)} more alike, estimated error up to "
-                          f"{100 * max(errors.values()):.1f} %")
+                          f"{100 * max(errors.values()):.1f} %", self.fold_categories[fold])
         self.folded = {key: {} for key in self.folded}
 
     @contextlib.contextmanager

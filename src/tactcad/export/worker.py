@@ -303,8 +303,12 @@ class _JobFuture:
             raise
         for line in logged:
             self._log(line)
-        for message, category in issued:
-            warnings.warn(message, category, stacklevel=2)
+        for said in issued:
+            if isinstance(said, Warning):
+                warnings.warn(said, stacklevel=2)
+            else:
+                message, category = said
+                warnings.warn(message, category, stacklevel=2)
         return records
 
     def done(self) -> bool:
@@ -368,9 +372,32 @@ def _begin_run(context: bytes) -> None:
     _INHERITED.update(run=run, jobs={j.name: j for j in jobs}, by_content=True)
 
 
+def carried_warning(message: Warning | str, category: type[Warning]
+                    ) -> Warning | tuple[str, type[Warning]]:
+    """A warning the worker issued, as it is sent back to the run's process: its own object
+    where that pickles and reads back, so it keeps what it carries beside its text (a
+    :class:`~tactcad.mechanics.gauge_strain.GaugeStrainRangeWarning`'s ``error_rel``, the
+    figure a run's closing line on alike warnings reports); else its text and category.
+
+    Args:
+        message: the warning as caught (``warnings.WarningMessage.message``).
+        category: its category.
+
+    Returns:
+        The warning object, or (its text, its category).
+    """
+    if isinstance(message, Warning):
+        try:
+            pickle.loads(pickle.dumps(message))
+            return message
+        except Exception:  # a library's warning may hold what does not pickle
+            pass
+    return str(message), category
+
+
 def _run_job(name: str, handed: bytes, key: str | None = None
-             ) -> tuple[list[dict], list[tuple[str, type]], list[str]]:
-    """The job's records, the warnings it issued (message, category) and the
+             ) -> tuple[list[dict], list[Warning | tuple[str, type[Warning]]], list[str]]:
+    """The job's records, the warnings it issued (:func:`carried_warning`) and the
     lines it logged, which the run's process reports (:class:`_JobFuture`).
     ``handed``: the solids the job reads (:func:`_hand_over`), by part name,
     or by content (:func:`solid_key`) in a session worker, which keeps them.
@@ -398,4 +425,4 @@ def _run_job(name: str, handed: bytes, key: str | None = None
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         records = job.make(run)
-    return records, [(str(w.message), w.category) for w in caught], _LOGGED[:]
+    return records, [carried_warning(w.message, w.category) for w in caught], _LOGGED[:]
