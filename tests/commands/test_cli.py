@@ -559,3 +559,27 @@ def test_a_command_line_imports_only_its_own_command_module():
     full = cli.build_parser(["exprt"])
     sub = next(a for a in full._actions if isinstance(a, argparse._SubParsersAction))
     assert set(sub.choices) == set(cli.COMMANDS)
+
+
+def test_an_arrays_stiffness_without_element_pastes_its_first_element(capsys):
+    assert cli.main(["stiffness", "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert err["field"] == "--element" and "1 ... 10" in err["allowed"]  # the 2 x 5 example
+    assert err["alternatives"][0]["option"] == "--element 1"
+    assert cli.main(["stiffness", *err["alternatives"][0]["option"].split(), "--json"]) == 0
+
+
+def test_a_commands_extra_word_points_to_that_commands_help(capsys):
+    assert cli.main(["lumped", "--kr", "5.842", "--km", "0.7303", "--kobj", "0.5", "5"]) == 2
+    assert "(see tactcad lumped --help)" in capsys.readouterr().err
+
+
+def test_a_set_name_refused_pastes_the_cleaned_name_as_a_set(capsys):
+    import shlex
+
+    assert cli.main(["scenes", "--set", 'design.name="Zélé"', "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert "e.g. Zele" in err["allowed"]
+    paste = err["alternatives"][0]["option"]
+    assert paste == """--set 'design.name="Zele"'"""
+    assert cli.main(["scenes", *shlex.split(paste), "--json"]) == 0
