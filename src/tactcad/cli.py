@@ -166,17 +166,33 @@ def named_fields(message: str) -> list[tuple[str, str]]:
     return out
 
 
-def unknown_options(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
-    """The options of ``argv`` its command's parser does not know (a refusal of a missing
-    argument names them too: argparse stops at the first)."""
+def command_parser(parser: argparse.ArgumentParser,
+                   argv: list[str]) -> tuple[argparse.ArgumentParser, list[str]]:
+    """The parser that reads the options of ``argv``'s command (``sweep grid``'s own for
+    ``sweep grid``), down the command words from ``parser``.
+
+    Args:
+        parser: the command-line parser (:func:`build_parser`).
+        argv: the command line (without the program name).
+
+    Returns:
+        (that parser, the words after its command words); ``parser`` itself and ``argv``
+        when the line names no command.
+    """
     command, words = parser, list(argv)
-    # down the command words to the parser that reads the options (``sweep grid``'s own)
     while words:
         sub = next((a for a in command._actions if isinstance(a, argparse._SubParsersAction)),
                    None)
         if sub is None or words[0] not in sub.choices:
             break
         command, words = sub.choices[words[0]], words[1:]
+    return command, words
+
+
+def unknown_options(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """The options of ``argv`` its command's parser does not know (a refusal of a missing
+    argument names them too: argparse stops at the first)."""
+    command, words = command_parser(parser, argv)
     if command is parser:
         return []
     known = command._option_string_actions
@@ -296,10 +312,15 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
     try:
         args = parser.parse_args(argv)
     except UsageError as exc:
+        # argparse refuses a command's extra words from the top parser: the help to point
+        # to is the command's own (`tactcad lumped --help`), not the list of commands
+        command = command_parser(parser, argv)[0] if exc.parser is parser else exc.parser
         unknown = unknown_options(parser, argv)
         if not unknown or _LISTS[1][0] in str(exc):
-            raise
-        raise UsageError(exc.parser, f"{exc}; {_LISTS[1][0]}{' '.join(unknown)}") from None
+            if command is exc.parser:
+                raise
+            raise UsageError(command, str(exc)) from None
+        raise UsageError(command, f"{exc}; {_LISTS[1][0]}{' '.join(unknown)}") from None
     warn_repeated(parser, args, argv)
     validate_options(parser, args)
     return args

@@ -114,8 +114,30 @@ class DesignErrors(DesignError):
                          or (key.startswith(e.field + ".") and e.why == UNKNOWN_SECTION)),
                         e.file)
 
-        return DesignErrors(DesignError(e.field, e.value, e.allowed, e.why, source(e))
+        return DesignErrors(DesignError(e.field, e.value, e.allowed, e.why, source(e),
+                                        sourced_alternatives(e, source(e)))
                             for e in self.errors)
+
+
+def sourced_alternatives(error: DesignError, source: str) -> list[dict]:
+    """``error``'s alternatives as pasted where its value was given: one that writes the
+    field's line of the design file (``design.name = "x"``) becomes the ``--set`` that sets
+    it when ``source`` is a ``--set``; every other alternative as it is.
+
+    Args:
+        error: a design file's refusal.
+        source: where its value came from (the file, or ``--set KEY=VALUE`` as typed).
+
+    Returns:
+        The alternatives, in order.
+    """
+    import shlex
+
+    line = f"{error.field} = "
+    if not source.startswith("--set "):
+        return list(error.alternatives)
+    return [{**a, "option": "--set " + shlex.quote(f"{error.field}={a['option'][len(line):]}")}
+            if str(a.get("option", "")).startswith(line) else a for a in error.alternatives]
 
 
 class SceneError(TactcadError):

@@ -499,28 +499,21 @@ def project_design_name(folder_name: str) -> str | None:
     return name if re.fullmatch(NAME_PATTERN, name) else None
 
 
-#: Letters NFKD does not take apart, spelt in ASCII for a suggested name.
-_ASCII_SPELLING = {"ø": "o", "Ø": "O", "æ": "ae", "Æ": "AE", "œ": "oe", "Œ": "OE", "ß": "ss",
-                   "đ": "d", "Đ": "D", "ł": "l", "Ł": "L", "þ": "th", "Þ": "Th"}
-
-
 def suggested_design_name(text: str, fallback: str = "sensor") -> str:
     """A design name (:data:`~tactcad.vocabulary.schema.NAME_PATTERN`) close to ``text``
-    for a user to paste: accents dropped (``ü`` -> ``u``), every other character outside
-    the allowed ones (a space, say) an ``_``, cut to 64 characters.
+    for a user to paste (:func:`~tactcad.vocabulary.schema.suggested_name`: accents dropped,
+    ``ü`` -> ``u``, every other character outside the allowed ones an ``_``).
 
     Args:
-        text: the name asked for (a folder or file name).
+        text: the name asked for (a folder or file name; a ``.toml`` suffix is not kept).
         fallback: the name when nothing of ``text`` is left.
 
     Returns:
         A name :func:`project_design_name` accepts.
     """
-    import unicodedata
+    from tactcad.vocabulary.schema import suggested_name
 
-    spelt = "".join(_ASCII_SPELLING.get(c, c) for c in text.removesuffix(".toml"))
-    folded = unicodedata.normalize("NFKD", spelt).encode("ascii", "ignore").decode()
-    name = re.sub(r"[^A-Za-z0-9_.-]+", "_", folded).strip("_.-")[:64].rstrip("_.-")
+    name = suggested_name(text.removesuffix(".toml"), fallback)
     return name if project_design_name(name) is not None else fallback
 
 

@@ -572,3 +572,27 @@ def test_stiffness_says_which_strain_is_a_magnitude_and_which_is_signed(capsys):
     assert doc["face_strain_per_N"] > 0 and "magnitude" in lines["face strain"]
     assert doc["grid_strain_per_N"] < 0 and "signed" in lines["grid strain"]
     assert "magnitude" not in lines["grid strain"]
+
+
+def test_an_arrays_stiffness_without_element_pastes_its_first_element(capsys):
+    assert cli.main(["stiffness", "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert err["field"] == "--element" and "1 ... 10" in err["allowed"]  # the 2 x 5 example
+    assert err["alternatives"][0]["option"] == "--element 1"
+    assert cli.main(["stiffness", *err["alternatives"][0]["option"].split(), "--json"]) == 0
+
+
+def test_a_commands_extra_word_points_to_that_commands_help(capsys):
+    assert cli.main(["lumped", "--kr", "5.842", "--km", "0.7303", "--kobj", "0.5", "5"]) == 2
+    assert "(see tactcad lumped --help)" in capsys.readouterr().err
+
+
+def test_a_set_name_refused_pastes_the_cleaned_name_as_a_set(capsys):
+    import shlex
+
+    assert cli.main(["scenes", "--set", 'design.name="Zélé"', "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert "e.g. Zele" in err["allowed"]
+    paste = err["alternatives"][0]["option"]
+    assert paste == """--set 'design.name="Zele"'"""
+    assert cli.main(["scenes", *shlex.split(paste), "--json"]) == 0

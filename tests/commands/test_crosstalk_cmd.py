@@ -95,3 +95,38 @@ def test_a_dies_crosstalk_is_kept_in_the_result_store_and_says_what_it_solves(tm
     assert "3D FE" in heard[0] and "reused" in heard[1] and "3D FE" in heard[2]
     # the count is the mesh's bound before the windows are cut, not the solve's own
     assert "at most 1000 degrees of freedom" in heard[0]
+
+
+def test_a_stack_level_on_a_die_is_refused_before_any_solve_and_help_names_the_dies(
+        die_folder, monkeypatch):
+    """`--model stack-beam` on a die was taken (it was the default) and ignored; a level a
+    die cannot use is refused naming the die's, before the die is planned or solved."""
+    from tactcad.products.silicon_die.commands import die_views
+    from tactcad.products.silicon_die.mechanics import die_crosstalk as dx
+
+    def no_solve(*args, **kwargs):
+        raise AssertionError("the die was planned or solved")
+
+    monkeypatch.setattr(dx, "die_crosstalk", no_solve)
+    monkeypatch.setattr(die_views, "_planned", no_solve)
+    for level in ("stack-beam", "stack-timoshenko"):
+        r = run_cli("crosstalk", "--model", level, "--json", cwd=die_folder)
+        assert r.returncode == 2 and "Traceback" not in r.stderr, r.stdout + r.stderr
+        error = json.loads(r.stdout)["error"]
+        assert (error["field"], error["value"]) == ("--model", level)
+        assert error["allowed"].startswith(dx.CROSSTALK_LEVEL)
+        assert error["alternatives"][0]["option"] == f"--model {dx.CROSSTALK_LEVEL}"
+    from tactcad.cli import build_parser, command_parser
+
+    shown = command_parser(build_parser(["crosstalk"]), ["crosstalk"])[0].format_help()
+    assert dx.CROSSTALK_LEVEL in shown and "stack-beam" in shown
+
+
+def test_the_dies_level_on_an_array_is_refused_naming_the_stack_levels():
+    r = run_cli("crosstalk", "--model", "attach-fem3d", "--json")
+    assert r.returncode == 2
+    error = json.loads(r.stdout)["error"]
+    assert (error["field"], error["value"]) == ("--model", "attach-fem3d")
+    assert "stack-beam" in error["allowed"] and "silicon die" in error["message"]
+    r = run_cli("crosstalk", "--json")  # left out: the stack's cheapest level, as before
+    assert r.returncode == 0 and json.loads(r.stdout)["model"] == "stack-beam", r.stderr

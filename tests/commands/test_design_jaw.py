@@ -666,3 +666,34 @@ def test_several_constructions_refusing_one_option_name_it_and_its_value_once():
                                       ("monolithic-comb", "comb", high)], args))
     assert text.count("--full-scale-force = 1.0") == 1 and text.count("0.14 N") == 1
     assert "comb: the comb's stops" in text and "silicon die: allowed at most 0.03 N" in text
+
+
+def test_a_die_too_long_for_the_pocket_pastes_the_columns_and_the_rating_they_take(tmp_path):
+    """50 columns do not fit the 5 mm jaw's pocket: the refusal pasted `--columns 27` alone,
+    which the die then refused for its rating. The paste now names every target that binds
+    at the columns offered, and pasting it designs."""
+    from tactcad.vocabulary.rounding import round_down
+
+    asked = ["design", "--kr-over-km", "5", "--kobj-range", "0.2", "2", "--full-scale-force",
+             "0.005", "--jaw", "5", "--construction", "mems-die", "--columns", "50", "--out", "d"]
+    r = run_cli(*asked, "--json", cwd=tmp_path)
+    assert r.returncode == 2 and not (tmp_path / "d").exists(), r.stdout + r.stderr
+    pasted = json.loads(r.stdout)["error"]["alternatives"][0]["option"].split()
+    assert pasted[:2] == ["--columns", "27"], pasted
+    assert "--full-scale-force" in pasted, pasted
+    force = float(pasted[pasted.index("--full-scale-force") + 1])
+    assert force < 0.005 and force == round_down(force, 3)
+    r = run_cli(*asked, *pasted, "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert json.loads(r.stdout)["die"]["columns"] == 27
+
+
+def test_a_pasted_die_change_sets_only_the_targets_it_names():
+    from tactcad.commands.design import pasted_targets
+    from tactcad.studies.inverse_design import Targets
+
+    asked = Targets(5.0, (0.2, 2.0), 0.005)
+    changed, options = pasted_targets("--kobj-range 0.3 3 --full-scale-force 0.004", asked)
+    assert changed == Targets(5.0, (0.3, 3.0), 0.004)
+    assert options == {"--kobj-range": "0.3 3", "--full-scale-force": "0.004"}
+    assert pasted_targets("--jaw 10", asked) is None  # not a target: no die of it to plan

@@ -374,3 +374,31 @@ def test_a_dies_second_export_is_read_from_the_store_byte_for_byte(die_folder, m
     assert second[2].replace("out_b", "out_a") == first[2]
     changed = export("out_c", "--set", "die.full_scale_force_N=0.008")
     assert built == [1] and changed[1]["manifest.json"] != first[1]["manifest.json"]
+
+
+@pytest.mark.parametrize("choice", [("--only", "dxf"), ("--scene", "x"), ("--part", "x")])
+def test_an_arrays_choice_of_export_files_on_a_die_says_what_it_writes_and_pastes_it(
+        die_folder, choice):
+    """`export --only dxf` on a die was refused as "left out" with nothing to paste: the
+    refusal says what the die's export writes (no DXF; its scene) and pastes the export."""
+    r = run_cli("export", *choice, "--out", "e", "--json", cwd=die_folder)
+    assert r.returncode == 2 and not (die_folder / "e").exists(), r.stdout + r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == choice[0]
+    assert "no DXF" in error["message"] and "scenes/grasper_jaw_5mm_mems_in_jaw.glb" in \
+        error["message"]
+    assert error["alternatives"][0]["option"] == "tactcad export --out e"
+
+
+def test_scenes_in_a_dies_folder_lists_the_scene_its_export_writes(die_folder):
+    from tactcad.commands.die import DIE_FILES
+
+    r = run_cli("scenes", "--json", cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    (scene,) = json.loads(r.stdout)["scenes"]
+    assert scene["name"] == "grasper_jaw_5mm_mems_in_jaw"
+    assert DIE_FILES["glb"].format(name="grasper_jaw_5mm_mems") in scene["files"]
+    assert {"grasper_jaw", "die_carrier", "grasper_jaw_5mm_mems_device"} <= {
+        p["part"] for p in scene["groups"]["insert"]}
+    r = run_cli("scenes", "wirecut", "--json", cwd=die_folder)
+    assert r.returncode == 2 and scene["name"] in json.loads(r.stdout)["error"]["allowed"]

@@ -9,7 +9,13 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, p
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import keep_option_defaults
 from tactcad.commands.tolerance import add_cluster_args
+from tactcad.errors import DesignError
 from tactcad.mechanics.stack_crosstalk import CROSSTALK_LEVELS, crosstalk_models
+from tactcad.products.silicon_die.mechanics.die_crosstalk import CROSSTALK_COST as DIE_COST
+from tactcad.products.silicon_die.mechanics.die_crosstalk import CROSSTALK_LEVEL as DIE_LEVEL
+
+#: The level of an array's crosstalk when ``--model`` is left out.
+ARRAY_DEFAULT = "stack-beam"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -24,11 +30,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                         f"{n} {lv.cost}" for n, lv in CROSSTALK_LEVELS.items())
                     + ". --sweep adds how plate thickness, bolt spacing and spacer grade change "
                     "crosstalk_rel (on Dask). A silicon die's design file: the die's crosstalk "
-                    "through its handle and die attach (3D FE, about a minute).")
+                    f"through its handle and die attach ({DIE_LEVEL}, 3D FE, {DIE_COST}).")
     add_design_arg(p)
     add_cache_args(p)
-    p.add_argument("--model", choices=crosstalk_models(), default="stack-beam",
-                   help="crosstalk level (default %(default)s)")
+    # no default: a die's view tells a level asked from one left out
+    p.add_argument("--model", choices=(*crosstalk_models(), DIE_LEVEL), default=None,
+                   help=f"crosstalk level: for an array's design one of "
+                        f"{', '.join(crosstalk_models())} (default {ARRAY_DEFAULT}); for a "
+                        f"silicon die's design {DIE_LEVEL}, its only one ({DIE_COST})")
     p.add_argument("--sweep", action="store_true",
                    help="also sweep plate thickness, bolt spacing and spacer grade")
     add_cluster_args(p, local_default=False)
@@ -43,9 +52,10 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("crosstalk", args)  # a silicon die's design: through its handle
     if shown is not None:
         return shown
+    model = array_level(args.model)
     plan = plan_from_args(args)
-    record, result = crosstalk_record(plan, args.model)
-    rows = _sweep(plan, args) if args.sweep else None
+    record, result = crosstalk_record(plan, model)
+    rows = _sweep(plan, model, args) if args.sweep else None
     if args.json:
         print(dumps({**record, **({} if rows is None else {"sweep": rows})}, indent=1))
         return 0
@@ -53,10 +63,32 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _sweep(plan, args) -> list[dict]:
+def array_level(model: str | None) -> str:
+    """The crosstalk level of an array's design: ``--model`` as given, :data:`ARRAY_DEFAULT`
+    when left out.
+
+    Args:
+        model: ``--model``, or None.
+
+    Returns:
+        A level of the stack's ladder.
+
+    Raises:
+        DesignError: ``--model`` a silicon die's level, which an array's stack has not.
+    """
+    if model is None:
+        return ARRAY_DEFAULT
+    if model not in crosstalk_models():
+        raise DesignError("--model", model, f"one of {', '.join(crosstalk_models())} for an "
+                          f"array's design", f"{model} is a silicon die's crosstalk, through "
+                          "its handle and die attach; an array's is its clamped stack's")
+    return model
+
+
+def _sweep(plan, model: str, args) -> list[dict]:
     from tactcad.studies.crosstalk_sweep import crosstalk_sweep, sweep_points
 
-    points = sweep_points(plan, args.model)
+    points = sweep_points(plan, model)
     if args.scheduler is None and args.workers is None:
         return crosstalk_sweep(points)
     from tactcad.studies.sweeps import LOCAL_WORKERS, dask_client, dask_mapper

@@ -443,15 +443,114 @@ def misfit_words(misfits: list[dict]) -> str:
 
 def misfit_alternatives(misfits: list[tuple[str, list[dict]]]) -> list[dict]:
     """The pasteable alternatives of every product's misfits (``option``, ``words``: the
-    product it makes fit), each once."""
+    product it makes fit, or the misfit's own ``paste_words``), each once."""
     out, seen = [], set()
     for name, missed in misfits:
         for m in missed:
             if m.get("option") and m["option"] not in seen:
                 seen.add(m["option"])
-                out.append({"option": m["option"], "words": f"a jaw the {name} fits"
-                            if not m["option"].startswith("--columns")
-                            else f"the most columns of the {name} the pocket holds"})
+                out.append({"option": m["option"], "words": m.get("paste_words") or (
+                    f"a jaw the {name} fits" if not m["option"].startswith("--columns")
+                    else f"the most columns of the {name} the pocket holds")})
+    return out
+
+
+#: The target options a die's refusal pastes, and the :class:`~tactcad.studies.inverse_design.Targets`
+#: field each sets.
+DIE_TARGET_OPTIONS = {"--kr-over-km": "kr_over_km", "--kobj-range": "k_obj_range_N_per_mm",
+                      "--full-scale-force": "full_scale_force_N"}
+#: The die's refusals followed at most this many times for one pasted change (each pastes
+#: a change that designs: a second is a safeguard, not the rule).
+DIE_PASTE_ROUNDS = 3
+
+
+def pasted_targets(option: str, targets: Any) -> tuple[Any, dict[str, str]] | None:
+    """``targets`` with the target options of a pasted ``option`` set
+    (:data:`DIE_TARGET_OPTIONS`), or None when it pastes any other option.
+
+    Args:
+        option: the options a refusal pastes, e.g. ``--kobj-range 0.3 3 --full-scale-force
+            0.004`` (N/mm, N).
+        targets: the targets asked (:class:`~tactcad.studies.inverse_design.Targets`).
+
+    Returns:
+        (the targets changed, {option: its words as pasted}), or None.
+    """
+    import dataclasses
+
+    words, changed, flag = shlex.split(option), {}, None
+    for word in words:
+        if word.startswith("--"):
+            if word not in DIE_TARGET_OPTIONS:
+                return None
+            flag = word
+            changed[flag] = []
+        elif flag is not None:
+            changed[flag].append(word)
+    if not changed:
+        return None
+    values = {DIE_TARGET_OPTIONS[f]: (tuple(float(v) for v in vs) if len(vs) > 1
+                                      else float(vs[0])) for f, vs in changed.items()}
+    return dataclasses.replace(targets, **values), {f: " ".join(vs) for f, vs in changed.items()}
+
+
+def die_columns_that_design(columns: int, targets, room) -> str:
+    """The change to paste that designs a die of ``columns`` in the jaw's ``room``: the
+    columns and every target that binds at them, as the die's own refusals paste them (a
+    lighter rating rounded down, a K_obj range that fits), so that pasting it designs.
+
+    Args:
+        columns: the columns the pocket holds.
+        targets: the targets asked (:class:`~tactcad.studies.inverse_design.Targets`: N/mm, N).
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+
+    Returns:
+        ``--columns N`` and the target options that bind there, or "" when no change the
+        die's refusals paste designs it.
+    """
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
+
+    pasted: dict[str, str] = {}
+    for _ in range(DIE_PASTE_ROUNDS):
+        try:
+            doped_die_plan(targets, room, columns=columns)
+        except DesignError as refusal:
+            offered = [a["option"] for a in refusal.alternatives if a.get("option")]
+            change = pasted_targets(offered[0], targets) if offered else None
+            if change is None:
+                return ""  # the die refuses at these columns with nothing a target helps
+            targets, options = change
+            pasted.update(options)
+            continue
+        return " ".join([f"--columns {columns}", *(f"{f} {v}" for f, v in pasted.items())])
+    return ""
+
+
+def die_misfits_that_design(missed: list[dict], targets, room) -> list[dict]:
+    """The die's misfits (:func:`~tactcad.products.silicon_die.design.die_mount.die_misfit`)
+    with each ``--columns N`` to paste widened to the change that designs at N
+    (:func:`die_columns_that_design`): fewer columns that the die then refuses for its
+    rating would be a paste that does not design.
+
+    Args:
+        missed: the die's misfits (``words``, ``option``).
+        targets: the targets asked. room: the jaw's room (mm).
+
+    Returns:
+        The misfits, a ``--columns`` option replaced by the whole change ("" when none
+        designs), its ``paste_words`` naming what else it sets.
+    """
+    out = []
+    for m in missed:
+        option = m.get("option") or ""
+        if option.startswith("--columns "):
+            whole = die_columns_that_design(int(option.split()[1]), targets, room)
+            more = [w for w in whole.split()[2:] if w.startswith("--")]
+            m = {**m, "option": whole}
+            if more:
+                m["paste_words"] = ("the most columns of the silicon die the pocket holds, "
+                                    f"and the {', '.join(more)} they take")
+        out.append(m)
     return out
 
 
@@ -987,6 +1086,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
 
         missed = die_misfit(room, room.table or {}, args.columns or DEFAULT_COLUMNS)
         if missed:
+            missed = die_misfits_that_design(missed, targets, room)
             misfits.append(("silicon die", missed))
             die_on = False
     told = refusals + [(n, misfit_words(m)) for n, m in misfits]

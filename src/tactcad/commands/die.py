@@ -653,13 +653,49 @@ def _die_args(design: Path, args: argparse.Namespace, out: Path) -> argparse.Nam
                               **{k: None for k in (*TARGET_OPTIONS, *DEFAULTS)})
 
 
+def die_export_words(name: str) -> str:
+    """What a die's export writes, by the file names :data:`DIE_FILES` gives the die
+    ``name``: what a refusal of an array's choice of files says instead."""
+    f = {k: v.format(name=name) for k, v in DIE_FILES.items()}
+    return (f"its masks {f['masks']} and wafer {f['wafer']} (GDSII: the die is etched, no "
+            f"part of it is cut from sheet, so it has no DXF), the die {f['step']}, its one "
+            f"scene {name}_in_jaw ({f['scene']}, {f['glb']}, {f['scene_picture']}), "
+            f"{f['drawing']}, {f['bom']}, {f['traveller']}, {f['record']}, {f['review']} and "
+            f"{f['manifest']}, all at once")
+
+
+def whole_export_command(args: argparse.Namespace) -> str:
+    """The ``tactcad export`` to paste for a die: the design and ``--set`` values asked,
+    ``--out`` as given, no choice of files."""
+    import shlex
+
+    words = ["tactcad", "export"]
+    if getattr(args, "design", None):
+        words += ["--design", str(args.design)]
+    for text in getattr(args, "overrides", None) or ():
+        words += ["--set", text]
+    return shlex.join([*words, "--out", str(args.out)])
+
+
 def export_die(design: Path, args: argparse.Namespace) -> int:
-    """``tactcad export`` of a die's design file: the die command's files into ``--out``."""
+    """``tactcad export`` of a die's design file: the die command's files into ``--out``.
+
+    Raises:
+        DesignError: ``--scene``, ``--only`` or ``--part`` (an array's choice of files),
+            saying what the die's export writes and pasting the export that writes it.
+    """
+    die_args = _die_args(design, args, Path(args.out))
     for option in ("scene", "only", "part"):
         if getattr(args, option, None):
-            raise DesignError(f"--{option}", getattr(args, option), "left out for a die",
-                              f"{design.name} is a silicon die's design: its export is whole")
-    return run(_die_args(design, args, Path(args.out)))
+            name = die_asked(die_args)["name"]
+            raise DesignError(f"--{option}", getattr(args, option),
+                              "left out for a die: its export is whole",
+                              f"{design.name} is a silicon die's design; its export writes "
+                              + die_export_words(name),
+                              alternatives=[{"option": whole_export_command(args),
+                                             "words": "the die's whole export, its scene "
+                                                      f"{name}_in_jaw with it"}])
+    return run(die_args)
 
 
 @dataclass(frozen=True)

@@ -48,15 +48,33 @@ def register(sub: argparse._SubParsersAction) -> None:
     t.set_defaults(func=run_table1)
 
 
+def missing_element_error(plan) -> DesignError:
+    """The refusal of ``stiffness`` without ``--element`` on an array's design: the
+    design's element numbers, and its first element to paste.
+
+    Args:
+        plan: the design's plan (its ``slots``, numbered 1 ... rows x columns).
+
+    Returns:
+        A :class:`~tactcad.errors.DesignError` naming ``--element`` and the numbers allowed.
+    """
+    numbers = sorted(s.number for s in plan.slots)
+    return DesignError("--element", None, f"a value: an element number of the design, "
+                       f"{numbers[0]} ... {numbers[-1]} (rows x columns)",
+                       "required for an array's design, whose stiffness is one element's (a "
+                       "die's file gives each row's beam)",
+                       alternatives=[{"option": f"--element {numbers[0]}",
+                                      "words": f"its first element; any of {numbers[0]} ... "
+                                               f"{numbers[-1]} is one"}])
+
+
 def run_stiffness(args: argparse.Namespace) -> int:
     shown = product_view("stiffness", args)  # a silicon die's design: each row's beam
     if shown is not None:
         return shown
-    if args.element is None:
-        raise DesignError("--element", None, "a value: an element number of the design (1 ... "
-                          "rows x columns)", "required for an array's design, whose stiffness "
-                          "is one element's (a die's file gives each row's beam)")
     project = load_from_args(args)
+    if args.element is None:
+        raise missing_element_error(project.plan)
     check_element_option(args.element, project.plan)
     plan, element = project.plan, project.element(args.element)
     slot = element.slot

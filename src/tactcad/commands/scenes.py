@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from tactcad.commands import add_design_arg, add_output_args, project_from_args
+from tactcad.commands import add_design_arg, add_output_args, product_view, project_from_args
 from tactcad.commands.finite_json import dumps
 
 
@@ -23,6 +23,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from tactcad.assembly.rig_models import describe, get_scene_spec, scene_summaries
 
+    shown = product_view("scenes", args)  # a silicon die's design: its scene in the jaw
+    if shown is not None:
+        return shown
     project = project_from_args(args)
     if args.name is not None:
         get_scene_spec(project, args.name)  # SceneError (exit 2) lists the scenes

@@ -41,6 +41,27 @@ MAX_NESTING = 16
 #: Safe names for designs and scenes: they end up in file names, DXF headers and SVG.
 NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$"
 NAME_ALLOWED = "1-64 characters A-Z a-z 0-9 _ . -, starting with a letter or digit"
+#: Letters NFKD does not take apart, spelt in ASCII for a suggested name.
+ASCII_SPELLING = {"ø": "o", "Ø": "O", "æ": "ae", "Æ": "AE", "œ": "oe", "Œ": "OE", "ß": "ss",
+                  "đ": "d", "Đ": "D", "ł": "l", "Ł": "L", "þ": "th", "Þ": "Th"}
+
+
+def suggested_name(text: str, fallback: str = "sensor") -> str:
+    """A name of :data:`NAME_PATTERN` close to ``text`` for a user to paste: accents
+    dropped (``ü`` -> ``u``), every other character outside the allowed ones (a space,
+    say) an ``_``, cut to 64 characters.
+
+    Args:
+        text: the name asked for.
+        fallback: the name when nothing of ``text`` is left.
+
+    Returns:
+        A name :data:`NAME_PATTERN` matches.
+    """
+    spelt = "".join(ASCII_SPELLING.get(c, c) for c in text)
+    folded = unicodedata.normalize("NFKD", spelt).encode("ascii", "ignore").decode()
+    name = re.sub(r"[^A-Za-z0-9_.-]+", "_", folded).strip("_.-")[:64].rstrip("_.-")
+    return name if re.fullmatch(NAME_PATTERN, name) else fallback
 #: Closed limits that depend on other fields are met within this much (mm), so a
 #: value equal to its limit in decimals is not refused for binary rounding.
 LIMIT_TOLERANCE_MM = 1e-9
@@ -330,8 +351,14 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
         return DesignError(field, value, FILE_NAME_ALLOWED + found,
                            why or "the name a user reads must be the file's name on disk", file)
     if limits.kind == "name":
-        return DesignError(field, value, NAME_ALLOWED,
-                           "names end up in file names, DXF headers and drawings", file)
+        cleaned = suggested_name(str(value))
+        # to paste as the design file writes it; a --set of the key turns it into that option
+        # (DesignErrors.sourced)
+        return DesignError(field, value, f"{NAME_ALLOWED}, e.g. {cleaned}",
+                           "names end up in file names, DXF headers and drawings", file,
+                           alternatives=[{"option": f'{field} = "{cleaned}"',
+                                          "words": "the name with accents dropped and other "
+                                                   "characters as _"}])
     if limits.kind == "choice":
         if not isinstance(value, str) and not isinstance(value, bool) \
                 and f"{value}" in limits.unit.removeprefix("one of ").split(", "):

@@ -19,7 +19,7 @@ PRODUCT = Product(
     design_table="die",
     views={command: f"{_VIEWS}:{command}_view"
            for command in ("modal", "budget", "readout", "thermal", "verify", "grasp",
-                           "crosstalk", "strength", "stiffness", "tolerance")},
+                           "crosstalk", "strength", "stiffness", "tolerance", "scenes")},
     export="tactcad.commands.die:export_die",
     check="tactcad.commands.die:check_die",
     new_project="tactcad.project_folder:new_die_project",

@@ -31,6 +31,7 @@ DIE_OPTIONS: dict[str, frozenset] = {
     "grasp": frozenset({"angle_deg", "force_N", "slab_thickness_mm", "profile", "kobj",
                         "opening_deg", "coupling"}),
     "strength": frozenset({"model"}), "stiffness": frozenset({"model"}),
+    "crosstalk": frozenset({"model"}),
     "tolerance": frozenset({"samples", "seed", "kobj", "distribution"})}
 
 
@@ -141,6 +142,7 @@ def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     from tactcad.products.silicon_die.mechanics.die_crosstalk import MAX_DOFS, crosstalk_in_force, mesh_dofs
     from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
 
+    check_die_crosstalk_level(getattr(args, "model", None))  # before the die is planned
     plan = _planned(design, args).plan
     dofs = mesh_dofs(plan)
     if dofs > MAX_DOFS:
@@ -159,6 +161,29 @@ def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     report = {"design": str(design), "die": plan.name, **result.as_json(),
               "reused": reused, "in_force": in_force}
     return report, crosstalk_lines(plan, result, in_force, reused)
+
+
+def check_die_crosstalk_level(model: str | None) -> None:
+    """Refuse a crosstalk ``--model`` a die has not: the stack's levels model an array's
+    clamped stack, a die has its one level.
+
+    Args:
+        model: ``--model`` as given, or None when left out (the die's level).
+
+    Raises:
+        DesignError: naming ``--model``, its value and the die's level, which is pasted.
+    """
+    from tactcad.products.silicon_die.mechanics.die_crosstalk import (CROSSTALK_COST,
+                                                                      CROSSTALK_LEVEL)
+
+    if model in (None, CROSSTALK_LEVEL):
+        return
+    raise DesignError("--model", model, f"{CROSSTALK_LEVEL} for a die (its only crosstalk "
+                      f"level: 3D FE through its handle and die attach, {CROSSTALK_COST})",
+                      f"{model} models an array's clamped stack of bases and spacers, which a "
+                      "silicon die has not",
+                      alternatives=[{"option": f"--model {CROSSTALK_LEVEL}",
+                                     "words": "the die's crosstalk, or leave --model out"}])
 
 
 def _crosstalk_kept(plan, dofs: int, report: Callable[[str], None]) -> tuple[Any, bool]:
@@ -445,6 +470,31 @@ def _tolerance(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     return record, [*report_lines(plan.name, report, wall), *warnings]
 
 
+def _scenes(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.commands.die import DIE_FILES, die_asked, _die_args
+    from tactcad.products.silicon_die.export.die_solid import COLOURS
+
+    name = die_asked(_die_args(design, args, Path(".")))["name"]
+    scene = f"{name}_in_jaw"
+    asked = getattr(args, "name", None)
+    if asked not in (None, scene):
+        raise DesignError("NAME", asked, f"{scene} (the die's one scene)",
+                          f"{design.name} is a silicon die's design")
+    parts = ["grasper_jaw", "die_carrier", *(f"{name}_{layer}" for layer in COLOURS)]
+    files = [DIE_FILES[k].format(name=name) for k in ("scene", "glb", "scene_picture")]
+    summary = {"name": scene, "rig": "jaw", "parts_placed": len(parts),
+               "description": "the die on its carrier in its jaw's face pocket",
+               "groups": {"insert": [{"part": p, "quantity": 1, "detail": "full"}
+                                     for p in parts]},
+               "files": files}
+    return ({"design": str(design), "die": name, "scenes": [summary]},
+            [f"{scene}  [{summary['rig']}]  {len(parts)} parts placed - "
+             f"{summary['description']}",
+             "    insert: " + ", ".join(f"{p} x1 (full)" for p in parts),
+             f"    written by `tactcad export --out DIR` (the die's export is whole): "
+             + ", ".join(files)])
+
+
 def _viewed(command: str, view: Callable[[Path, argparse.Namespace], tuple[dict, list[str]]]):
     """``view`` as the die's answer to the array command ``command`` (the die product's
     hook, :mod:`tactcad.products.silicon_die`): an option of the array's that means nothing
@@ -466,3 +516,4 @@ crosstalk_view = _viewed("crosstalk", _crosstalk)
 strength_view = _viewed("strength", _strength)
 stiffness_view = _viewed("stiffness", _stiffness)
 tolerance_view = _viewed("tolerance", _tolerance)
+scenes_view = _viewed("scenes", _scenes)

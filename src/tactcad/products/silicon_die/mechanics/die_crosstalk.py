@@ -55,6 +55,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+#: The die's one crosstalk level (``tactcad crosstalk --model`` on a die's design), and what
+#: it costs: its 3D FE through the handle and the die attach.
+CROSSTALK_LEVEL, CROSSTALK_COST = "attach-fem3d", "about a minute"
+
 #: An assumed attach's modulus is taken this factor either way for the error estimate.
 ATTACH_MODULUS_SPAN = 2.0
 #: A data sheet's modulus is taken this factor either way (assumption: a cured adhesive's
@@ -392,7 +396,7 @@ def die_crosstalk(plan, mesh: tuple[float, float, int] = MESH) -> DieCrosstalk:
     rel, worst = worst_crosstalk(reading)
     change = abs(rel - at_coarser[0]) + max(abs(at_coarser[0] - x) for x in at_coarser[1:])
     numbers = tuple(b.number for b in plan.beams)
-    return DieCrosstalk("attach-fem3d", numbers, reading, rel,
+    return DieCrosstalk(CROSSTALK_LEVEL, numbers, reading, rel,
                         (numbers[worst[0]], numbers[worst[1]]),
                         change / rel if rel > 0 else 0.0, dofs, time.perf_counter() - t0,
                         "the die a silicon block on its die-attach film (Winkler springs: "
