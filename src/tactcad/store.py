@@ -7,10 +7,12 @@ of the CAD stack and a digest of tactcad's own code and data files (so a
 changed builder invalidates what it built). A job whose key is in the store
 is not run: its files and file records are copied from the store.
 
-Layout: ``<root>/<key[:2]>/<key>/records.json`` plus the job's files under
-their export-relative paths. An entry is written into a temporary folder and
-renamed into place, so a killed run never leaves a half entry; a damaged
-entry counts as a miss. Nothing here imports the CAD kernel.
+Layout: ``<root>/<key[:2]>/<key>/records.json``, ``sums.json`` (each file's
+sha256) and the job's files under their export-relative paths. An entry is
+written into a temporary folder and renamed into place, so a killed run never
+leaves a half entry; a damaged entry (a file missing, emptied or changed since
+it was kept, or an entry without its sums) counts as a miss and is removed, so
+the run that rebuilds the job keeps it again. Nothing here imports the CAD kernel.
 
 The same store keeps costly intermediate values (``<root>/memo/<key[:2]>/<key>.pickle``,
 :meth:`Store.memo`): a part view's projected edges, and the heavy
@@ -36,7 +38,7 @@ from importlib import metadata
 from pathlib import Path, PurePosixPath
 from typing import Any, Callable, Iterator, Mapping, Sequence, TypeVar
 
-from tactcad.atomic import write_bytes_atomic
+from tactcad.atomic import file_sha256, write_bytes_atomic
 
 #: Default store folder, relative to the working directory (git-ignored).
 #: The store's folder name in a project (the working folder's by default).
@@ -148,17 +150,25 @@ class Store:
         return self.root / key[:2] / key
 
     def fetch(self, key: str, staging: Path) -> list[dict] | None:
-        """Copy a stored job's files into ``staging``; its records, or ``None`` on a miss."""
+        """Copy a stored job's files into ``staging``; its records, or ``None`` on a miss
+        (nothing kept, or a damaged entry, which is removed: each copied file must have
+        the sha256 it was kept with)."""
         if self.root is None:
             return None
         entry = self._entry(key)
+        if not entry.is_dir():
+            return None
         try:
             records = json.loads((entry / "records.json").read_text(encoding="utf-8"))
+            sums = json.loads((entry / "sums.json").read_text(encoding="utf-8"))
             for r in records:
                 target = staging / r["path"]
                 target.parent.mkdir(parents=True, exist_ok=True)
                 shutil.copyfile(entry / "files" / r["path"], target)
+                if file_sha256(target) != sums[r["path"]]:
+                    raise ValueError(f"{r['path']} changed since it was kept")
         except (OSError, ValueError, KeyError, TypeError):
+            shutil.rmtree(entry, ignore_errors=True)  # rebuilt and kept again by this run
             return None
         return records
 
@@ -220,6 +230,8 @@ class Store:
                 shutil.copyfile(staging / r["path"], target)
             (tmp / "records.json").write_text(json.dumps(list(records)),
                                               encoding="utf-8")
+            sums = {r["path"]: file_sha256(tmp / "files" / r["path"]) for r in records}
+            (tmp / "sums.json").write_text(json.dumps(sums), encoding="utf-8")
             os.rename(tmp, entry)
         except OSError:
             if tmp is not None:

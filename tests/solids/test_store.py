@@ -86,3 +86,26 @@ def test_a_part_mesh_is_kept_by_its_spec_and_read_back_without_a_build(tmp_path,
     assert len(made[1]) > 0
     np.testing.assert_array_equal(read[0], made[0])
     np.testing.assert_array_equal(read[1], made[1])
+
+
+def test_a_damaged_entry_is_a_miss_and_the_next_keep_replaces_it(tmp_path):
+    """A kept file emptied, truncated or changed since it was kept is never copied into an
+    export: the entry counts as a miss, is removed, and the run that rebuilds the job keeps
+    its files again (a good entry reads back byte for byte)."""
+    from tactcad.store import Store
+
+    store, made = Store(tmp_path / "store"), tmp_path / "made"
+    (made / "sub").mkdir(parents=True)
+    (made / "sub" / "part.step").write_bytes(b"ISO-10303-21;" * 100)
+    records = [{"path": "sub/part.step", "kind": "step"}]
+    store.keep("ab" + "0" * 62, made, records)
+    good = tmp_path / "good"
+    assert store.fetch("ab" + "0" * 62, good) == records
+    assert (good / "sub" / "part.step").read_bytes() == b"ISO-10303-21;" * 100
+    kept = tmp_path / "store" / "ab" / ("ab" + "0" * 62) / "files" / "sub" / "part.step"
+    for damage in (b"", b"ISO-10303-21;" * 99, b"ISO-10303-22;" + b"ISO-10303-21;" * 99):
+        kept.write_bytes(damage)
+        assert store.fetch("ab" + "0" * 62, tmp_path / "bad") is None
+        assert not kept.exists()
+        store.keep("ab" + "0" * 62, made, records)  # the rebuilt job kept again
+        assert store.fetch("ab" + "0" * 62, tmp_path / "again") == records
