@@ -43,3 +43,18 @@ def test_a_new_designs_gauge_stiffness_is_the_catalogues_not_the_papers_measurem
     rigs = (tmp_path / "al7075" / "rigs.toml").read_text(encoding="utf-8")
     assert 'model = "Sauter FH 5"' in rigs  # the gauge the report was about
     assert "57.04" not in rigs and "macro" not in rigs.lower() and "to be measured" in rigs
+
+
+def test_a_catalogue_model_typed_in_another_case_is_still_held_to_its_datasheet():
+    """"mark-10  m5-05" is the Mark-10 M5-05: a range stated for another gauge fails by
+    name whatever the letter case or spacing; a lab's own model is left alone."""
+    from tactcad.vocabulary.force_gauge_catalogue import (catalogue_gauge, catalogue_mismatches,
+                                                          force_gauges)
+
+    gauge = force_gauges()[0]
+    typed = "  ".join(gauge.model.lower().split())
+    assert catalogue_gauge(typed) == gauge
+    found = catalogue_mismatches(typed, gauge.range_N * 2, gauge.resolution_N)
+    assert found == [f"range_N = {gauge.range_N * 2:g} N, the catalogue's {gauge.model} reads "
+                     f"{gauge.range_N:g} N"]
+    assert catalogue_mismatches("our own load cell", 1.0, 0.001) == []

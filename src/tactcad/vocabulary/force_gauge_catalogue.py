@@ -156,9 +156,16 @@ def choose_force_gauge(need: GaugeNeed) -> tuple[ForceGaugeModel, list[str]]:
 
 
 def catalogue_gauge(model: str) -> ForceGaugeModel | None:
-    """The catalogue gauge named ``model`` (as ``[force_gauge] model`` writes it), or None
-    for a gauge the catalogue does not hold (a lab's own)."""
-    return next((g for g in force_gauges() if g.model == model), None)
+    """The catalogue gauge named ``model`` (as ``[force_gauge] model`` writes it, in any
+    letter case and spacing: "mark-10 m5-05" is the Mark-10 M5-05), or None for a gauge the
+    catalogue does not hold (a lab's own)."""
+    return next((g for g in force_gauges() if _model_words(g.model) == _model_words(model)),
+                None)
+
+
+def _model_words(model: str) -> tuple[str, ...]:
+    # a model name as a lab may type it: case and runs of spaces do not name another gauge
+    return tuple(str(model).casefold().split())
 
 
 def catalogue_mismatches(model: str, range_N: float, resolution_N: float) -> list[str]:
@@ -178,6 +185,6 @@ def catalogue_mismatches(model: str, range_N: float, resolution_N: float) -> lis
     if gauge is None:
         return []
     stated = {"range_N": (range_N, gauge.range_N), "resolution_N": (resolution_N, gauge.resolution_N)}
-    return [f"{key} = {value:g} N, the catalogue's {model} reads {own:g} N"
+    return [f"{key} = {value:g} N, the catalogue's {gauge.model} reads {own:g} N"
             for key, (value, own) in stated.items()
             if not math.isclose(value, own, rel_tol=1e-9)]
