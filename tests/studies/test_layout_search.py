@@ -310,3 +310,14 @@ def test_the_refusals_force_pastes_and_is_the_same_for_any_force_asked_above_it(
     assert code == 0, doc
     written = tomllib.loads((tmp_path / "pasted.toml").read_text(encoding="utf-8"))
     assert written["requirements"]["full_scale_force_N"] == offered
+
+
+@pytest.mark.parametrize("limit", [0.004826, 0.0049999, 0.12058, 3.14159])
+def test_a_force_refusals_at_most_is_rounded_down_never_past_the_limit(limit):
+    """The "at most" a refusal names is a force at or below the largest the designs carry,
+    so pasted it is not refused again for the force (0.004826 N was said as 0.00483 N)."""
+    from tactcad.studies.layout_search import force_refusal
+
+    e = force_refusal(5.0 * limit, limit, 0.0, "the targets", "bound by a limit")
+    said = float(re.match(r"at most (\S+) N", e.allowed).group(1))
+    assert limit * 0.99 <= said <= limit

@@ -501,7 +501,10 @@ def force_refusal(asked_N: float, whole_N: float, estimate_N: float, asked: str,
     if whole_N >= asked_N:
         return None
     most = whole_N or estimate_N
-    shown = _fmt(most) if float(_fmt(most)) < asked_N else f"{most:.4g}"
+    # rounded down: an "at most" rounded to the nearest digit can name a force above the
+    # limit (0.004826 N said as 0.00483 N, which pasted is refused again)
+    shown = next((f"{round_down(most, d):g}" for d in (3, 4) if round_down(most, d) < asked_N),
+                 f"{round_down(most, 6):g}")
     if float(shown) >= asked_N:  # no digits show it below the force asked: say so
         return DesignError("--full-scale-force", asked_N, f"less than {asked_N:g} N for "
                            f"{asked}", why)
