@@ -123,7 +123,15 @@ def test_a_labs_first_hour_from_the_wheel(installed, tmp_path, example_exported)
     # a cold export in a new process, from the installed package data, writes the bytes
     # the test process's own export of the checkout's example wrote (another hash seed,
     # another folder, another copy of the package)
-    assert file_digests(repo / "exports") == file_digests(example_exported)
+    # the manifest records the project's own input files, and a project made by `new` names
+    # itself in its rigs file: every other byte of the manifest, and every other file, equal
+    made, checkout = file_digests(repo / "exports"), file_digests(example_exported)
+    assert {**made, "manifest.json": ""} == {**checkout, "manifest.json": ""}
+    ours, theirs = (json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
+                    for folder in (repo / "exports", example_exported))
+    roles = {f["role"]: f for f in ours.pop("inputs")["files"]}
+    assert roles["design"] == {f["role"]: f for f in theirs.pop("inputs")["files"]}["design"]
+    assert roles["rigs"]["file"] == "rigs.toml" and ours == theirs
     _run([tactcad, "check", "--design", design, "--out", "exports", "--junit",
           "check-report.xml", "--failures-only"], repo, env, timings=timings)
     report = (repo / "check-report.xml").read_text(encoding="utf-8")
