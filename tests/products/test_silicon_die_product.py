@@ -376,6 +376,41 @@ def test_a_dies_second_export_is_read_from_the_store_byte_for_byte(die_folder, m
     assert built == [1] and changed[1]["manifest.json"] != first[1]["manifest.json"]
 
 
+@pytest.mark.slow  # three whole exports of a die
+def test_a_dies_changed_requirement_rebuilds_only_the_files_it_shapes(die_folder, monkeypatch,
+                                                                       capsys):
+    """Each file of a die's export is a job of the store: a changed accuracy target (no
+    geometry) builds no solid and keeps the STEP files, the masks and the pictures, and the
+    export is byte for byte a fresh export of the changed design."""
+    from tactcad import cli
+    from tactcad.products.silicon_die.export import die_solid
+
+    design, store = str(die_folder / EXAMPLE.name), str(die_folder / "store")
+
+    def export(out: str, *extra: str) -> dict:
+        assert cli.main(["export", "--design", design, "--out", str(die_folder / out), *extra,
+                         "--quiet"]) == 0
+        capsys.readouterr()
+        return {p.relative_to(die_folder / out).as_posix(): p.read_bytes()
+                for p in (die_folder / out).rglob("*") if p.is_file()}
+
+    first = export("out_a", "--cache", store)
+    built = []
+    original = die_solid.die_layer_solids
+    monkeypatch.setattr(die_solid, "die_layer_solids",
+                        lambda *a, **k: built.append(1) or original(*a, **k))
+    changed = ("--set", "die.kobj_accuracy_rel=0.5")
+    second = export("out_b", "--cache", store, *changed)
+    assert not built  # the solids' jobs came from the store
+    name = EXAMPLE.stem
+    kept = [f"{name}.step", f"{name}_in_jaw.step", f"{name}.gds", f"{name}_masks.png",
+            f"{name}_in_jaw.png", f"scenes/{name}_in_jaw.glb"]
+    assert all(second[f] == first[f] for f in kept)
+    assert second[f"{name}.json"] != first[f"{name}.json"]
+    fresh = export("out_c", "--no-cache", *changed)
+    assert built and fresh == second
+
+
 @pytest.mark.parametrize("choice", [("--only", "dxf"), ("--scene", "x"), ("--part", "x")])
 def test_an_arrays_choice_of_export_files_on_a_die_says_what_it_writes_and_pastes_it(
         die_folder, choice):

@@ -363,44 +363,28 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
     """
     from tactcad.checks.check_result import status_counts
     from tactcad.checks.sheet_overlap import sheet_file_results
-    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
+    from tactcad.export.run import run_jobs
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
     from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
-    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
-    from tactcad.products.silicon_die.export.die_scene import (mount_bom_rows, mount_solids,
-                                                               write_mount_bom,
-                                                               write_mount_picture,
-                                                               write_mount_step)
-    from tactcad.products.silicon_die.export.die_solid import die_layer_solids, write_die_step
-    from tactcad.products.silicon_die.export.gds_masks import (write_die_gds, write_mask_picture,
-                                                               write_wafer_gds)
-    from tactcad.products.silicon_die.export.traveller import write_traveller
-    from tactcad.products.silicon_die.in_use.die_budget import die_budget, post_height_drawing
+    from tactcad.products.silicon_die.export.die_jobs import DieRun, die_jobs
     from tactcad.products.silicon_die.mechanics.die_dynamics import (calculix_beam_check,
                                                                      closed_form_k_N_per_mm,
                                                                      die_modes, first_resonance_Hz)
-    from tactcad.products.silicon_die.mechanics.piezoresistor import die_readout
     from tactcad.products.silicon_die.studies.die_reports import die_beam_fem3d_kept
+    from tactcad.store import Store, active_store
 
     plan, room, name, out = planned.plan, planned.room, planned.plan.name, Path(args.out)
-    write_die_gds(plan, made["masks"])
-    _, dies = write_wafer_gds(plan, made["wafer"])
-    layers = die_layer_solids(plan)  # built once: the die's STEP and its mount read them
-    write_die_step(plan, made["step"], layers)
-    write_mask_picture(made["masks"], made["picture"])
-    solids = mount_solids(plan, mount, layers)
-    write_mount_step(solids, made["scene"], f"{name}_in_jaw")
-    write_mount_picture(solids, made["scene_picture"], f"{name} in the {room.label}")
-    write_mount_bom(mount_bom_rows(plan, mount, room.label), made["bom"])
-    readout = die_readout(plan)
-    budget = die_budget(plan, readout)
-    made["drawing"].write_text(die_sheet(plan, mount, post_height_drawing(budget)).svg(),
-                               encoding="utf-8")
-    write_traveller(plan, readout["sheet_resistance_ohm_per_sq"], files["masks"].name,
-                    made["traveller"])
+    run = DieRun(plan, mount, room.label, staging,
+                 {k: p.relative_to(staging).as_posix() for k, p in made.items()},
+                 active_store() or Store(None))
+    # each file a job of the store, as an array's: a change rebuilds only what it shapes
+    jobs = die_jobs(run)
+    records, jobs_run = run_jobs(run, jobs, run.store)
+    dies = next(r["dies"] for r in records if "dies" in r)
+    readout, budget = run.readout, run.budget
     checks = (gds_checks(made["masks"], plan)
               + traveller_checks(made["traveller"], made["masks"])
-              + mount_checks(solids, mount, f"{name}_posts")
+              + _mount_checks(run)
               + sheet_file_results(made["drawing"]) + die_requirement_checks(plan, mount))
     counts = status_counts(checks)
     modes = die_modes(plan)
@@ -423,10 +407,23 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
               "checks": [{"check": c.check, "subject": c.subject, "status": c.status,
                           "detail": c.detail} for c in checks], "counts": counts}
     made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
-    _write_review_and_manifest(plan, planned.source, made, files, solids, budget, staging,
+    _write_review_and_manifest(plan, planned.source, made, files, budget, staging,
                                mount, getattr(args, "design", None))
     return {"record": record, "checks": checks, "counts": counts, "readout": readout,
-            "dies": dies, "modes": modes, "fe": fe, "budget": budget}
+            "dies": dies, "modes": modes, "fe": fe, "budget": budget,
+            "jobs_run": jobs_run, "jobs_reused": len(jobs) - jobs_run}
+
+
+def _mount_checks(run) -> list:
+    """The mount's checks on its solids (:func:`~tactcad.products.silicon_die.checks.die_mount_fit.mount_checks`),
+    kept in the store by the scene's inputs: a run that fetched the scene's files builds no
+    solid for them."""
+    from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
+    from tactcad.store import kept_result
+
+    return kept_result("die-mount-checks",
+                       lambda: mount_checks(run.solids, run.mount, f"{run.plan.name}_posts"),
+                       run.scene_inputs)
 
 
 def die_export_key(planned, mount, design_file: str | None) -> str:
@@ -484,9 +481,9 @@ def keep_die_export(key: str, staging: Path, kept: dict) -> None:
     store.remember(key + "-report", kept)
 
 
-def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict, solids: dict,
+def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict,
                                budget, staging: Path, mount, design_file: str | None) -> None:
-    """The die's scene (GLB), review page and manifest, from the files made before them in
+    """The die's review page and manifest, from the files made before them in
     ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`); the page shows the
     atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`)."""
     from tactcad.export.atlas_view import atlas_view
@@ -495,11 +492,9 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     from tactcad.export.review_assets import import_map
     from tactcad.export.review_page import write_review_page
     from tactcad.products.silicon_die.export.die_review import (
-        beam_elements, design_head, die_manifest, manifest_text, review_contents_of_die,
-        write_scene_glb)
+        beam_elements, design_head, die_manifest, manifest_text, review_contents_of_die)
     from tactcad.products.silicon_die.studies.die_verification import die_verification
 
-    write_scene_glb(solids, made["glb"], f"{plan.name}_in_jaw")
     head = design_head(plan.name, source)
     elements = beam_elements(strength_report(plan)[0], stiffness_report(plan)[0])
     contents = review_contents_of_die(

@@ -58,24 +58,43 @@ def _through(outline, holes, z0_um: float, height_um: float):
                *[_prism(h, z0_um - 1.0, height_um + 2.0) for h in holes])
 
 
-def die_layer_solids(plan: DiePlan) -> dict:
-    """Layer name -> solid (mm): ``handle``, ``oxide``, ``device``, ``posts``."""
+def die_layer_inputs(plan: DiePlan) -> dict:
+    """Everything the die's layer solids are built from, kernel-free: the masks' outlines
+    (um: the die, each row's cavity with its depth, the device etch, the posts) and the
+    stack's heights (um). :func:`die_layer_solids` reads only these, so an export names its
+    solids' files by them (a change of the die's read-out or requirements leaves them).
+
+    Returns:
+        ``{"outline", "cavities": [(polygon, depth_um)], "device_etch", "posts",
+        "handle_um", "box_um", "device_um", "post_height_um"}``.
+    """
     from tactcad.products.silicon_die.export.gds_masks import die_polygons
-    from tactcad.kernel import shapes
-    from tactcad.kernel.shapes import cut
 
     masks = die_polygons(plan)
     s = plan.stack
-    outline = masks["die"][0]
-    cavities = [(masks[f"cavity_{role}"][0], depth) for role, depth
-                in zip(("reference", "measuring"), plan.cavity_depths_um)]
-    z_oxide, z_device = s.handle_um, s.handle_um + s.box_um
-    z_top = z_device + s.device_um
-    handle = cut(_prism(outline, 0.0, s.handle_um),
-                 *[_prism(c, s.handle_um - depth, depth + 1.0) for c, depth in cavities])
-    oxide = _through(outline, [c for c, _ in cavities], z_oxide, s.box_um)
-    device = _through(outline, masks["device_etch"], z_device, s.device_um)
-    posts = shapes.Compound([_prism(p, z_top, plan.post_height_um) for p in masks["tip"]])
+    return {"outline": masks["die"][0],
+            "cavities": [(masks[f"cavity_{role}"][0], depth) for role, depth
+                         in zip(("reference", "measuring"), plan.cavity_depths_um)],
+            "device_etch": masks["device_etch"], "posts": masks["tip"],
+            "handle_um": s.handle_um, "box_um": s.box_um, "device_um": s.device_um,
+            "post_height_um": plan.post_height_um}
+
+
+def die_layer_solids(plan: DiePlan, inputs: dict | None = None) -> dict:
+    """Layer name -> solid (mm): ``handle``, ``oxide``, ``device``, ``posts``; ``inputs``:
+    :func:`die_layer_inputs` when already made."""
+    from tactcad.kernel import shapes
+    from tactcad.kernel.shapes import cut
+
+    i = die_layer_inputs(plan) if inputs is None else inputs
+    outline, cavities, handle_um = i["outline"], i["cavities"], i["handle_um"]
+    z_oxide, z_device = handle_um, handle_um + i["box_um"]
+    z_top = z_device + i["device_um"]
+    handle = cut(_prism(outline, 0.0, handle_um),
+                 *[_prism(c, handle_um - depth, depth + 1.0) for c, depth in cavities])
+    oxide = _through(outline, [c for c, _ in cavities], z_oxide, i["box_um"])
+    device = _through(outline, i["device_etch"], z_device, i["device_um"])
+    posts = shapes.Compound([_prism(p, z_top, i["post_height_um"]) for p in i["posts"]])
     return {"handle": handle, "oxide": oxide, "device": device, "posts": posts}
 
 
