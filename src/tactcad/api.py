@@ -647,6 +647,54 @@ class Project:
         return budget_record(self.plan, model, force_N, delta_T_K)[0]
 
     @keyword_errors
+    def strength(self, model: str = "closed-form") -> dict:
+        """Every distinct element's peak stress per newton, yield-limited force and its
+        stress, gauge strain and tip deflection at the rated full-scale force, and the
+        rating judged against every element force limit, as ``tactcad strength --json``
+        gives them (MPa, N, mm; ``requirement["met"]``).
+
+        Args:
+            model: ladder level (``closed-form``, ``beam``, ``fem2d``, ``fem3d``).
+
+        Raises:
+            UnknownModelError: ``model`` is not a ladder level.
+            DesignError: the material has no yield strength.
+        """
+        from tactcad.studies.project_reports import strength_record
+
+        return strength_record(self.plan, model)[0]
+
+    @keyword_errors
+    def modes(self, model: str = "closed-form", modes: int = 3, element: int | None = None,
+              bare: bool = False, tip_mass_mg: float = 0.0) -> dict:
+        """The lowest natural frequencies of every distinct element (or one), clamped as in
+        the stiffness model, as ``tactcad modal --json`` gives them (Hz, g, mm, s).
+
+        Args:
+            model: modal level (``closed-form``, ``fem2d``, ``fem3d``). modes: modes per
+                element, 1 ... 20 (FEM levels). element: one element's number (None: every
+                distinct element). bare: leave out the gauge installation's mass.
+            tip_mass_mg: a further mass at the contact centre, 0 ... 10000 mg.
+
+        Raises:
+            UnknownModalModelError: ``model`` is no modal level.
+            DesignError: ``element``, ``modes`` or ``tip_mass_mg`` out of range.
+        """
+        import numbers
+
+        from tactcad.errors import DesignError
+        from tactcad.studies.project_reports import modes_record
+
+        if element is not None:
+            element = element_number(element, len(self.plan.slots), "element")
+        if isinstance(modes, bool) or not isinstance(modes, numbers.Integral):
+            raise DesignError("modes", modes, "a whole number 1 ... 20")
+        if isinstance(tip_mass_mg, bool) or not isinstance(tip_mass_mg, numbers.Real):
+            raise DesignError("tip_mass_mg", tip_mass_mg, "a number 0 ... 10000 mg")
+        return modes_record(self.plan, model, int(modes), element, bool(bare),
+                            float(tip_mass_mg))[0]
+
+    @keyword_errors
     def crosstalk(self, model: str = "stack-beam") -> dict:
         """The clamped stack's crosstalk, as ``tactcad crosstalk --json`` gives it (without
         ``--sweep``): the n x n gauge sensitivity (1/N), the tip displacements (mm/N),

@@ -43,6 +43,11 @@ def without_seconds(record):
     ("grasp", "grasp", {"force_N": 0.2, "slab_thickness_mm": 4.0, "profile": "slab"},
      ("--force-N", "0.2", "--slab-thickness-mm", "4", "--profile", "slab")),
     ("tolerance", "tolerance", {"samples": 2000}, ("--samples", "2000")),
+    ("strength", "strength", {}, ()),
+    ("strength", "strength", {"model": "beam"}, ("--model", "beam")),
+    ("modes", "modal", {}, ()),
+    ("modes", "modal", {"element": 4, "bare": True, "tip_mass_mg": 12.5},
+     ("--element", "4", "--bare", "--tip-mass-mg", "12.5")),
     ("tolerance", "tolerance",
      {"samples": 2000, "seed": 3, "arm_tol": 0.05, "distribution": "uniform", "reference": 5},
      ("--samples", "2000", "--seed", "3", "--arm-tol", "0.05", "--distribution", "uniform",
@@ -75,12 +80,29 @@ def test_the_apis_reports_are_the_commands_json(method, command, kwargs, argv):
     ("tolerance", {"samples": 2000, "reference": 1}, "reference"),  # softer than element 2
     ("tolerance", {"modulus_tol": 0.6}, "modulus_tol"),
     ("tolerance", {"samples": 2000, "arm_tol": 9.0}, "arm_tol"),  # lets the arm vanish
+    ("modes", {"element": 7}, "element"),
+    ("modes", {"modes": 0}, "modes"),
+    ("modes", {"modes": 2.5}, "modes"),
+    ("modes", {"tip_mass_mg": -1.0}, "tip_mass_mg"),
+    ("modes", {"tip_mass_mg": float("nan")}, "tip_mass_mg"),
+    ("modes", {"tip_mass_mg": "12"}, "tip_mass_mg"),
 ])
 def test_the_apis_reports_refuse_naming_the_keyword(method, kwargs, named):
     project = tactcad.load(str(DESIGN))
     with pytest.raises(DesignError) as caught:
         getattr(project, method)(**kwargs)
     assert caught.value.field == named
+
+
+def test_the_apis_strength_and_modes_refuse_an_unknown_level_naming_the_levels():
+    from tactcad.mechanics.modal_ladder import UnknownModalModelError
+
+    project = tactcad.load(str(DESIGN))
+    with pytest.raises(UnknownModalModelError, match="closed-form, fem2d, fem3d"):
+        project.modes(model="beam")
+    with pytest.raises(Exception, match="closed-form") as caught:
+        project.strength(model="no-such-level")
+    assert "Traceback" not in str(caught.value)
 
 
 def test_the_apis_crosstalk_refuses_an_unknown_level_naming_the_levels():

@@ -43,61 +43,35 @@ def register(sub: argparse._SubParsersAction) -> None:
     keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
-def _added_masses(plan, g, args) -> tuple:
-    """The gauge installation's point masses (none with ``--bare``) and the ``--tip-mass-mg``."""
-    from tactcad.mechanics.gauge_mass import gauge_installation_masses
-    from tactcad.mechanics.modal_result import PointMass
-
-    masses = () if args.bare else gauge_installation_masses(plan, g)
-    if args.tip_mass_mg:
-        masses += (PointMass("tip mass (--tip-mass-mg)", args.tip_mass_mg * 1e-3,
-                             *g.contact_centre_mm, "command line"),)
-    return masses
-
-
 def run_modal(args: argparse.Namespace) -> int:
     shown = product_view("modal", args)  # a silicon die's design: its own figures
     if shown is not None:
         return shown
     from tactcad.mechanics.fem.fem_modal import write_modes_vtu
-    from tactcad.mechanics.modal_ladder import estimate_modes
+    from tactcad.studies.project_reports import MAX_TIP_MASS_MG, modes_record
 
     meshed = MODAL_LEVELS[args.model].meshed
     if args.vtu is not None and not meshed:
         raise TactcadError(f"--vtu {args.vtu}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
-    if not 0.0 <= args.tip_mass_mg <= 10_000.0 or args.tip_mass_mg != args.tip_mass_mg:
-        raise TactcadError(f"--tip-mass-mg {args.tip_mass_mg:g}: allowed 0 ... 10000 mg")
+    if not 0.0 <= args.tip_mass_mg <= MAX_TIP_MASS_MG or args.tip_mass_mg != args.tip_mass_mg:
+        raise TactcadError(f"--tip-mass-mg {args.tip_mass_mg:g}: allowed 0 ... "
+                           f"{MAX_TIP_MASS_MG:g} mg")
     plan = plan_from_args(args)
     report = progress_from_args(args)
     if args.element is not None:
         check_element_option(args.element, plan)
-        slot = plan.element(args.element)
-        chosen = {slot.geometry.part_name: (slot.geometry, [slot.number])}
-    else:
-        chosen = {}
-        for s in plan.slots:
-            chosen.setdefault(s.geometry.part_name, (s.geometry, []))[1].append(s.number)
-    records = []
-    for part, (g, numbers) in chosen.items():
-        opts = {"progress": report, "keep_shapes": args.vtu is not None} if meshed else {}
-        masses = _added_masses(plan, g, args)
-        r = estimate_modes(args.model, g, plan.material, element=numbers[0], modes=args.modes,
-                           added_masses=masses, **opts)
-        rec = {"part": part, "elements": numbers, **r.as_json(),
-               "added_masses": [{"name": m.name, "mass_g": m.mass_g, "x_mm": m.x_mm,
-                                 "y_mm": m.y_mm, "source": m.source} for m in masses]}
+    record, results = modes_record(plan, args.model, args.modes, args.element, args.bare,
+                                   args.tip_mass_mg, report, keep_shapes=args.vtu is not None)
+    records = record["elements"]
+    for rec, (part, r) in zip(records, results):
         if args.vtu is not None:
             path = write_modes_vtu(Path(args.vtu) / f"{part}_modes_{args.model}.vtu", r.solve)
             rec["vtu"] = str(path)
             report(f"wrote {path} ({len(r.modes)} mode shapes)")
-        records.append(rec)
     lowest = min(records, key=lambda rec: rec["first_Hz"])
     if args.json:
-        print(json.dumps({"model": args.model, "families": list(MODAL_LEVELS[args.model].families),
-                          "elements": records,
-                          "lowest_first_Hz": lowest["first_Hz"],
-                          "lowest_part": lowest["part"]}, indent=2))
+        print(json.dumps(record, indent=2))
         return 0
     families = MODAL_LEVELS[args.model].families
     print(f"natural frequencies, model {args.model} (clamped as in the stiffness model; "

@@ -50,8 +50,8 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("strength", args)  # a silicon die's design: each row's beam root
     if shown is not None:
         return shown
+    from tactcad.studies.project_reports import strength_record
     from tactcad.studies.reference_loads import reference_load_of
-    from tactcad.studies.strength_studies import plan_strength
 
     plan = plan_from_args(args)
     if args.table1:
@@ -63,13 +63,11 @@ def run(args: argparse.Namespace) -> int:
         return _run_table1(plan, args.model, args.json)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
-    records = plan_strength(plan, args.model, progress=progress,
-                            reference_load=reference_load_of(plan))
-    judged = full_scale_judgement(plan, args.model, records)
+    record, records = strength_record(plan, args.model, progress)
+    judged = record["requirement"]
     code = 0 if judged["met"] else 1
     if args.json:
-        print(json.dumps({"elements": [r.as_json() for r in records], "requirement": judged},
-                         indent=2, allow_nan=False))
+        print(json.dumps(record, indent=2, allow_nan=False))
         return code
     m, s = plan.material, plan.strength
     print(f"Strength, model {args.model}: {m.grade or m.name}, yield {m.yield_strength_MPa:g} MPa, "
@@ -102,28 +100,6 @@ def run(args: argparse.Namespace) -> int:
                 seen.add(key)
                 print(f"warning: element {r.element} ({r.part_name}): {w}")
     return code
-
-
-def full_scale_judgement(plan, model: str, records) -> dict:
-    """The design's rated full-scale force against every element force limit at ``model``
-    (the stress figures of ``records`` reused; ``element_force_limit_N`` is the
-    lowest element force limit, the largest force every element carries)."""
-    from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
-    from tactcad.studies.verification import requirements_of
-    from tactcad.mechanics.element_strength import ElementStress
-
-    req = requirements_of(plan)
-    stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,
-                                           r.stiffness_N_per_mm, grid_strain_per_N=(
-                                               r.gauge_strain_at_full_scale
-                                               / r.full_scale_force_N))
-                for r in records}
-    errors = {r.part_name: r.stress_error_rel for r in records}
-    b = binding(plan_limits(plan, model, stresses, errors))
-    return {"full_scale_force_N": req.full_scale_force_N,
-            "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
-            "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
-            "met": b.force_N >= req.full_scale_force_N, "model": model}
 
 
 def _run_table1(plan, model: str, as_json: bool) -> int:

@@ -230,3 +230,126 @@ def tolerances_used(plan, tol) -> dict:
     out["general"] = {"value": t.general_text, "source": "design" if
                       t.source("general") == "design file" else "default"}
     return out
+
+
+def strength_record(plan, model: str = "closed-form",
+                    progress: Callable[[str], None] | None = None) -> tuple[dict, list]:
+    """Every distinct element's peak stress per newton, yield-limited force and its stress,
+    gauge strain and tip deflection at the rated full-scale force, and that rating judged
+    against every element force limit (:func:`full_scale_judgement`).
+
+    Args:
+        plan: the design's plan. model: a ladder level (``closed-form`` ... ``fem3d``).
+        progress: called with each step's line (None: silent).
+
+    Returns:
+        (the record ``tactcad strength --json`` prints: ``{"elements": [...],
+        "requirement": {...}}`` in MPa, N, mm; the element records).
+
+    Raises:
+        UnknownModelError: ``model`` is no ladder level.
+        DesignError: the material has no yield strength.
+    """
+    from tactcad.studies.reference_loads import reference_load_of
+    from tactcad.studies.strength_studies import plan_strength
+
+    records = plan_strength(plan, model, progress=progress,
+                            reference_load=reference_load_of(plan))
+    return ({"elements": [r.as_json() for r in records],
+             "requirement": full_scale_judgement(plan, model, records)}, records)
+
+
+def full_scale_judgement(plan, model: str, records) -> dict:
+    """The design's rated full-scale force against every element force limit at ``model``
+    (the stress figures of ``records`` reused; ``element_force_limit_N`` is the
+    lowest element force limit, the largest force every element carries).
+
+    Returns:
+        ``{"full_scale_force_N", "reason", "element_force_limit_N", "binding_limit",
+        "binding_element", "met", "model"}`` (N).
+    """
+    from tactcad.mechanics.element_strength import ElementStress
+    from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
+    from tactcad.studies.verification import requirements_of
+
+    req = requirements_of(plan)
+    stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,
+                                           r.stiffness_N_per_mm, grid_strain_per_N=(
+                                               r.gauge_strain_at_full_scale
+                                               / r.full_scale_force_N))
+                for r in records}
+    errors = {r.part_name: r.stress_error_rel for r in records}
+    b = binding(plan_limits(plan, model, stresses, errors))
+    return {"full_scale_force_N": req.full_scale_force_N,
+            "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
+            "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
+            "met": b.force_N >= req.full_scale_force_N, "model": model}
+
+
+#: Largest further tip mass (mg) a modal record takes (``--tip-mass-mg``).
+MAX_TIP_MASS_MG = 10_000.0
+#: Most modes per element a modal record solves (``--modes``).
+MAX_MODES = 20
+
+
+def modes_record(plan, model: str = "closed-form", modes: int = 3,
+                 element: int | None = None, bare: bool = False, tip_mass_mg: float = 0.0,
+                 progress: Callable[[str], None] | None = None,
+                 keep_shapes: bool = False) -> tuple[dict, list]:
+    """The lowest natural frequencies of every distinct element (or one), clamped as in the
+    stiffness model, with the gauge installation's point masses (none when ``bare``) and a
+    further ``tip_mass_mg`` at the contact centre.
+
+    Args:
+        plan: the design's plan. model: a modal level (``closed-form`` ... ``fem3d``).
+        modes: modes per element (FEM levels). element: one element's number (None: every
+            distinct element). bare: leave out the gauge installation's mass.
+        tip_mass_mg: a further mass at the tip, 0 ... :data:`MAX_TIP_MASS_MG` mg.
+        progress: meshed levels' progress lines. keep_shapes: keep the mode shapes (for a
+            VTU file).
+
+    Returns:
+        (the record ``tactcad modal --json`` prints (Hz, g, mm, s); ``(part, result)`` per
+        distinct element).
+
+    Raises:
+        DesignError: ``tip_mass_mg`` or ``modes`` out of range.
+        UnknownModalModelError: ``model`` is no modal level.
+    """
+    from tactcad.mechanics.gauge_mass import gauge_installation_masses
+    from tactcad.mechanics.modal_ladder import (MODAL_LEVELS, UnknownModalModelError,
+                                                estimate_modes)
+    from tactcad.mechanics.modal_result import PointMass
+
+    if model not in MODAL_LEVELS:
+        raise UnknownModalModelError(model)
+    if not 0.0 <= tip_mass_mg <= MAX_TIP_MASS_MG:  # NaN fails both
+        raise DesignError("tip_mass_mg", tip_mass_mg, f"0 ... {MAX_TIP_MASS_MG:g} mg")
+    if not 1 <= modes <= MAX_MODES:
+        raise DesignError("modes", modes, f"1 ... {MAX_MODES} modes per element")
+    meshed = MODAL_LEVELS[model].meshed
+    if element is not None:
+        slot = plan.element(element)
+        chosen = {slot.geometry.part_name: (slot.geometry, [slot.number])}
+    else:
+        chosen = {}
+        for s in plan.slots:
+            chosen.setdefault(s.geometry.part_name, (s.geometry, []))[1].append(s.number)
+    records, results = [], []
+    for part, (g, numbers) in chosen.items():
+        opts = {"progress": progress or (lambda line: None), "keep_shapes": keep_shapes} \
+            if meshed else {}
+        masses = () if bare else gauge_installation_masses(plan, g)
+        if tip_mass_mg:
+            masses += (PointMass("tip mass (--tip-mass-mg)", tip_mass_mg * 1e-3,
+                                 *g.contact_centre_mm, "command line"),)
+        r = estimate_modes(model, g, plan.material, element=numbers[0], modes=modes,
+                           added_masses=masses, **opts)
+        records.append({"part": part, "elements": numbers, **r.as_json(),
+                        "added_masses": [{"name": m.name, "mass_g": m.mass_g, "x_mm": m.x_mm,
+                                          "y_mm": m.y_mm, "source": m.source} for m in masses]})
+        results.append((part, r))
+    lowest = min(records, key=lambda rec: rec["first_Hz"])
+    return ({"model": model, "families": list(MODAL_LEVELS[model].families),
+             "elements": records, "lowest_first_Hz": lowest["first_Hz"],
+             "lowest_part": lowest["part"]}, results)
