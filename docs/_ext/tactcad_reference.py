@@ -343,12 +343,17 @@ def check_groups_markdown() -> str:
 def constructions_markdown() -> str:
     """The constructions (``[array] construction``), from their registry."""
     from tactcad.design.construction_registry import CONSTRUCTIONS, DEFAULT_CONSTRUCTION
+    from tactcad.mechanics.crosstalk_ladder import construction_levels
+
+    def crosstalk(c) -> str:
+        levels = ", ".join(code(n) for n in construction_levels(c.name)) or "none"
+        return levels + ("" if c.stack_crosstalk else
+                         " (`tactcad crosstalk`; no crosstalk files yet, manifest `left_out`)")
 
     rows = [[code(c.name) + (" (default)" if c.name == DEFAULT_CONSTRUCTION else ""),
              text(c.summary), ", ".join(code(k) for k in c.parts), text(c.scales_to_mm),
              "yes" if c.test_rigs else "none (no rigs file, no rig scenes)",
-             "yes" if c.stack_crosstalk else "none (no crosstalk files; manifest `left_out`)",
-             code(c.module)] for c in CONSTRUCTIONS.values()]
+             crosstalk(c), code(c.module)] for c in CONSTRUCTIONS.values()]
     from tactcad.partlib.array.comb_sheet import CombSection
     from tactcad.vocabulary.schema import _limits
 
@@ -358,7 +363,7 @@ def constructions_markdown() -> str:
     return ("Generated from the registry `tactcad.design.construction_registry.CONSTRUCTIONS`; "
             "a design file chooses one with `[array] construction`.\n\n"
             + table(["construction", "how the array is made", "part modules", "how small",
-                     "test rigs", "stack crosstalk", "derivation"], rows)
+                     "test rigs", "crosstalk levels", "derivation"], rows)
             + "\n\nThe `monolithic-comb`'s table `[comb]` (in place of `[clamp]`; its "
             "`[element]` leaves out `base_height_mm` and `overall_length_mm`, which it derives):\n\n"
             + table(["key", "range", "default", "reason"], comb_rows))

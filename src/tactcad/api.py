@@ -695,18 +695,22 @@ class Project:
                             float(tip_mass_mg))[0]
 
     @keyword_errors
-    def crosstalk(self, model: str = "stack-beam") -> dict:
-        """The clamped stack's crosstalk, as ``tactcad crosstalk --json`` gives it (without
-        ``--sweep``): the n x n gauge sensitivity (1/N), the tip displacements (mm/N),
-        ``crosstalk_rel``, the decoupling matrix and, at the rated force, each gauge's
-        crosstalk in newtons against its force resolution.
+    def crosstalk(self, model: str | None = None) -> dict:
+        """The array's crosstalk, as ``tactcad crosstalk --json`` gives it (without
+        ``--sweep``): the stacked array's clamped stack or a monolithic comb's row sheets;
+        the n x n gauge sensitivity (1/N), the tip displacements (mm/N), ``crosstalk_rel``,
+        the decoupling matrix and, at the rated force, each gauge's crosstalk in newtons
+        against its force resolution.
 
         Args:
-            model: a crosstalk level (``stack-beam`` ...; ``tactcad crosstalk --help``).
+            model: a crosstalk level of the design's construction (``stack-beam`` ...,
+                ``comb-beam``, ``comb-fem2d``; ``tactcad crosstalk --help``); None: its
+                construction's cheapest (``stack-beam``, ``comb-beam``).
 
         Raises:
             UnknownCrosstalkModelError: ``model`` is no crosstalk level.
-            DesignError: the design is no clamped stack.
+            DesignError: ``model`` is a level of another construction (naming the design's
+                own), refused before anything is solved.
         """
         from tactcad.studies.project_reports import crosstalk_record
 
@@ -1205,6 +1209,7 @@ class DieProject:
         return self._report("stiffness", model=model)
 
     @keyword_errors
+    @refuses_array_keywords
     def strength(self) -> dict:
         """Each row's root stress at the force it carries against the strength of etched
         silicon, and the rated-force requirement, as ``tactcad strength --json`` (MPa, N)."""
@@ -1217,6 +1222,7 @@ class DieProject:
         return self._report("readout")
 
     @keyword_errors
+    @refuses_array_keywords
     def modes(self) -> dict:
         """Each row's first resonance, as ``tactcad modal --json`` (Hz)."""
         return self._report("modal")

@@ -114,6 +114,22 @@ def test_the_apis_crosstalk_refuses_an_unknown_level_naming_the_levels():
     assert all(level in str(caught.value) for level in crosstalk_models())
 
 
+COMB = EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+
+
+def test_the_apis_crosstalk_answers_for_a_comb_as_the_command_does():
+    comb = tactcad.load(str(COMB))
+    given = comb.crosstalk()
+    assert given["model"] == "comb-beam" and len(given["elements"]) == 12
+    r = run_cli("crosstalk", "--design", str(COMB), "--json")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(json.dumps(without_seconds(given))) == without_seconds(json.loads(r.stdout))
+    # a stacked array's level on a comb: refused naming the keyword and the comb's levels
+    with pytest.raises(DesignError) as caught:
+        comb.crosstalk(model="stack-beam")
+    assert caught.value.field == "model" and "comb-beam" in caught.value.allowed
+
+
 
 def test_a_pin_past_the_last_tip_is_refused_naming_the_pin():
     """The jaw's length follows from a given pin: a pin past the last tip is the pin's

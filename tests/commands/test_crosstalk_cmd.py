@@ -25,13 +25,78 @@ def test_unknown_model_is_refused_in_one_line():
     assert "stack-beam" in json.loads(r.stdout)["error"]["message"]
 
 
-def test_a_comb_has_no_stack_crosstalk_model_and_is_refused_by_its_construction():
-    r = run_cli("crosstalk", "--design", "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml",
-                "--json")
+COMB = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"
+
+
+def test_a_comb_answers_at_its_own_cheapest_level():
+    # the comb was refused ("no stack crosstalk model"); its spine now couples its elements
+    r = run_cli("crosstalk", "--design", COMB, "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    d = json.loads(r.stdout)
+    assert d["model"] == "comb-beam" and d["elements"] == list(range(1, 13))
+    assert len(d["sensitivity_strain_per_N"]) == 12 == len(d["compliance_mm_per_N"])
+    assert 0 < d["crosstalk_rel"] < 1e-3 and d["error_estimate_rel"] > 0
+    assert d["asymmetry_rel"] < 1e-12 and "spine" in d["basis"]
+    q = d["in_force"]
+    assert q["gauge"] != q["loaded_element"] and q["force_resolution_steps"] > 0
+    text = run_cli("crosstalk", "--design", COMB)
+    assert text.returncode == 0 and "comb-beam" in text.stdout and "Maxwell-Betti" in text.stdout
+
+
+def test_a_comb_of_its_own_at_the_plane_fe():
+    """Not the shipped comb: a wider pitch, longer posts and other webs, at the FE level."""
+    webs = [0.15] * 6 + [0.1] * 6
+    r = run_cli("crosstalk", "--design", COMB, "--set", "array.pitch_mm=5.0",
+                "--set", "comb.post_length_mm=1.0", "--set", f"comb.web_thicknesses_mm={webs}",
+                "--model", "comb-fem2d", "--json")
+    assert r.returncode == 0, r.stdout + r.stderr
+    d = json.loads(r.stdout)
+    assert d["model"] == "comb-fem2d" and d["asymmetry_rel"] < 1e-12
+    assert 0 < d["crosstalk_rel"] < 1e-4 and 0 < d["error_estimate_rel"] < 0.1
+    S = d["sensitivity_strain_per_N"]
+    assert all(S[i][j] == 0 for i in range(6) for j in range(6, 12))  # the rows do not couple
+
+
+def _solves_nothing(monkeypatch):
+    from tactcad.mechanics import crosstalk_ladder
+
+    def solved(*args, **kwargs):
+        raise AssertionError("a level was read or solved")
+
+    monkeypatch.setattr(crosstalk_ladder.CrosstalkLevel, "read_inputs", solved)
+    monkeypatch.setattr(crosstalk_ladder.CROSSTALK_LADDER, "run", solved)
+
+
+def test_a_stack_level_on_a_comb_is_refused_before_any_solve_naming_the_combs(monkeypatch):
+    _solves_nothing(monkeypatch)
+    r = run_cli("crosstalk", "--design", COMB, "--model", "stack-timoshenko", "--json")
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stdout + r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert (error["field"], error["value"]) == ("--model", "stack-timoshenko")
+    assert error["allowed"].startswith("one of comb-beam, comb-fem2d")
+    assert [a["option"] for a in error["alternatives"]] == ["--model comb-beam",
+                                                            "--model comb-fem2d"]
+    # --sweep varies a clamped stack's plates and bolts: a comb has none
+    r = run_cli("crosstalk", "--design", COMB, "--sweep", "--json")
+    assert r.returncode == 2 and json.loads(r.stdout)["error"]["field"] == "--sweep"
+
+
+def test_a_comb_level_on_the_stacked_array_is_refused_naming_the_stacks(monkeypatch):
+    _solves_nothing(monkeypatch)
+    r = run_cli("crosstalk", "--model", "comb-fem2d", "--json")
     assert r.returncode == 2 and "Traceback" not in r.stderr
     error = json.loads(r.stdout)["error"]
-    assert error["field"] == "array.construction" and error["value"] == "monolithic-comb"
-    assert "bolts and plates" in error["message"]
+    assert (error["field"], error["value"]) == ("--model", "comb-fem2d")
+    assert "stack-beam" in error["allowed"] and "comb" in error["message"]
+    assert error["alternatives"][0]["option"] == "--model stack-beam"
+
+
+def test_help_names_every_constructions_levels():
+    from tactcad.cli import build_parser, command_parser
+
+    shown = command_parser(build_parser(["crosstalk"]), ["crosstalk"])[0].format_help()
+    for level in ("stack-beam", "stack-fem3d", "comb-beam", "comb-fem2d", "attach-fem3d"):
+        assert level in shown, level
 
 
 DIE = "hardware/grasper_jaw_5mm_mems/grasper_jaw_5mm_mems.toml"

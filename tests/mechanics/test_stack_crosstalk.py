@@ -5,11 +5,11 @@ import pytest
 
 import tactcad
 from tactcad.mechanics.stack_crosstalk import (CrosstalkInputError, UnknownCrosstalkModelError,
-                                         crosstalk_models, estimate_crosstalk, plan_crosstalk,
+                                         construction_levels, estimate_crosstalk, plan_crosstalk,
                                          stack_inputs, with_changes)
 
 TI = "src/tactcad/examples/ti_array_2x3/ti_array_2x3.toml"
-BEAM_LEVELS = [m for m in crosstalk_models() if m != "stack-fem3d"]
+BEAM_LEVELS = [m for m in construction_levels("stacked") if m != "stack-fem3d"]
 #: the 3D level's coarsest mesh: 2 x 2 hexahedra across, one per layer (h/2 on the fine level)
 FEM_COARSEST = (2, 2, 1)
 

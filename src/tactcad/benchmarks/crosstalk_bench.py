@@ -1,10 +1,11 @@
 """``tactcad bench crosstalk``: cost and error of each crosstalk level on a design.
 
-Per level of :data:`tactcad.mechanics.stack_crosstalk.CROSSTALK_LEVELS`: the
-wall time of the plan's stack inputs (the elements' own K and gauge strain,
-once), the best of ``REPEATS`` solves (s), crosstalk_rel, the level's own
-error estimate, its distance to the last level and the tip matrix's
-asymmetry. Prints figures; sets no goal. Units: s.
+Per level of :data:`tactcad.mechanics.crosstalk_ladder.CROSSTALK_LEVELS` that describes the
+design's construction (the stacked array's ``stack-*``, a monolithic comb's ``comb-*``):
+the wall time of the plan's inputs (the elements' own K and gauge strain, once), the best
+of ``REPEATS`` solves (s; a meshed level once), crosstalk_rel, the level's own error
+estimate, its distance to the last level and the tip matrix's asymmetry. Prints figures;
+sets no goal. Units: s.
 """
 
 from __future__ import annotations
@@ -13,7 +14,8 @@ import json
 import time
 
 from tactcad.design.array_plan import Plan
-from tactcad.mechanics.stack_crosstalk import crosstalk_models, estimate_crosstalk, stack_inputs
+from tactcad.mechanics.crosstalk_ladder import (CROSSTALK_LADDER, CROSSTALK_LEVELS,
+                                                construction_levels, level_for)
 
 REPEATS = 5
 
@@ -21,14 +23,17 @@ REPEATS = 5
 def measure(plan: Plan) -> dict:
     """``{"inputs_s", "levels": [{model, solve_s, crosstalk_rel, error_estimate_rel,
     vs_last_level_rel, asymmetry_rel}]}`` for ``plan``."""
+    levels = construction_levels(plan.construction)
     t0 = time.perf_counter()
-    inputs = stack_inputs(plan)
+    inputs = level_for(plan).read_inputs(plan)  # refuses a construction no level describes
     inputs_s = time.perf_counter() - t0
     rows = []
-    for model in crosstalk_models():
+    for model in levels:
         best, result = float("inf"), None
-        for _ in range(1 if model == "stack-fem3d" else REPEATS):
-            result = estimate_crosstalk(inputs, model)
+        for _ in range(1 if CROSSTALK_LEVELS[model].meshed else REPEATS):
+            # never from the result store: the bench times the solve
+            result = CROSSTALK_LADDER.run(model, (inputs,), {}, label=plan.construction,
+                                          keep=False)
             best = min(best, result.seconds)
         rows.append({"model": model, "solve_s": best, "crosstalk_rel": result.crosstalk_rel,
                      "error_estimate_rel": result.error_estimate_rel,
@@ -47,9 +52,9 @@ def main(args, plan: Plan) -> int:
         print(json.dumps(figures, indent=1, allow_nan=False))
         return 0
     print(f"crosstalk levels on {figures['design']} ({figures['levels'][0]['elements']} elements); "
-          f"stack inputs (own K and gauge strain) {figures['inputs_s']:.3g} s, once")
-    print("| level | solve s (best of 5; fem3d once) | crosstalk_rel | error estimate | vs last level | "
-          "asymmetry |")
+          f"inputs (own K and gauge strain) {figures['inputs_s']:.3g} s, once")
+    print(f"| level | solve s (best of {REPEATS}; a meshed level once) | crosstalk_rel | "
+          "error estimate | vs last level | asymmetry |")
     print("| --- | --- | --- | --- | --- | --- |")
     for r in figures["levels"]:
         print(f"| {r['model']} | {r['solve_s']:.3g} | {r['crosstalk_rel']:.4g} | "

@@ -1,4 +1,5 @@
-"""``tactcad crosstalk``: the clamped array's sensitivity matrix, crosstalk and decoupling matrix."""
+"""``tactcad crosstalk``: an array's sensitivity matrix, crosstalk and decoupling matrix (the
+stacked array's clamped stack, a monolithic comb's row sheets), or a silicon die's."""
 
 from __future__ import annotations
 
@@ -10,36 +11,50 @@ from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import keep_option_defaults
 from tactcad.commands.tolerance import add_cluster_args
 from tactcad.errors import DesignError
-from tactcad.mechanics.stack_crosstalk import CROSSTALK_LEVELS, crosstalk_models
+from tactcad.mechanics.crosstalk_ladder import (CROSSTALK_LEVELS, construction_levels,
+                                                crosstalk_models, default_level)
 from tactcad.products.silicon_die.mechanics.die_crosstalk import CROSSTALK_COST as DIE_COST
 from tactcad.products.silicon_die.mechanics.die_crosstalk import CROSSTALK_LEVEL as DIE_LEVEL
 
-#: The level of an array's crosstalk when ``--model`` is left out.
+#: The level of a stacked array's crosstalk when ``--model`` is left out.
 ARRAY_DEFAULT = "stack-beam"
+#: A monolithic comb's levels and the one when ``--model`` is left out.
+COMB_LEVELS = construction_levels("monolithic-comb")
+COMB_DEFAULT = default_level("monolithic-comb")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
+    stack_levels = construction_levels("stacked")
     p = sub.add_parser(
-        "crosstalk", help="crosstalk of the clamped array: n x n gauge sensitivity, tip "
-                          "displacements, crosstalk_rel, decoupling matrix",
-        description="A unit force on each tip, the stack of element bases and spacers (bonded "
-                    "by the bolt preload) bending between the clamp plates: each gauge's "
-                    "grid-averaged strain (1/N), each tip's displacement (mm/N; Maxwell-Betti "
-                    "symmetric), crosstalk_rel (largest off-diagonal over its diagonal) and the "
-                    "decoupling matrix. Levels: " + ", ".join(
-                        f"{n} {lv.cost}" for n, lv in CROSSTALK_LEVELS.items())
+        "crosstalk", help="crosstalk of an array (clamped stack or comb): n x n gauge "
+                          "sensitivity, tip displacements, crosstalk_rel, decoupling matrix",
+        description="A unit force on each tip: each gauge's grid-averaged strain (1/N), each "
+                    "tip's displacement (mm/N; Maxwell-Betti symmetric), crosstalk_rel "
+                    "(largest off-diagonal over its diagonal) and the decoupling matrix. A "
+                    "stacked array: the stack of element bases and spacers (bonded by the bolt "
+                    "preload) bending between the clamp plates; levels " + ", ".join(
+                        f"{n} {CROSSTALK_LEVELS[n].cost}" for n in stack_levels)
                     + ". --sweep adds how plate thickness, bolt spacing and spacer grade change "
-                    "crosstalk_rel (on Dask). A silicon die's design file: the die's crosstalk "
-                    f"through its handle and die attach ({DIE_LEVEL}, 3D FE, {DIE_COST}).")
+                    "crosstalk_rel (on Dask). A monolithic comb: each row's sheet, its spine "
+                    "held at its dowel pins and under its screws' heads, carrying every "
+                    "element; levels " + ", ".join(
+                        f"{n} {CROSSTALK_LEVELS[n].cost}" for n in COMB_LEVELS)
+                    + f" (default {COMB_DEFAULT}, a screen that errs high; comb-fem2d the "
+                    "row's sheet as a plane-stress solid). A silicon die's design file: the "
+                    f"die's crosstalk through its handle and die attach ({DIE_LEVEL}, 3D FE, "
+                    f"{DIE_COST}).")
     add_design_arg(p)
     add_cache_args(p)
     # no default: a die's view tells a level asked from one left out
     p.add_argument("--model", choices=(*crosstalk_models(), DIE_LEVEL), default=None,
-                   help=f"crosstalk level: for an array's design one of "
-                        f"{', '.join(crosstalk_models())} (default {ARRAY_DEFAULT}); for a "
-                        f"silicon die's design {DIE_LEVEL}, its only one ({DIE_COST})")
+                   help=f"crosstalk level: for a stacked array's design one of "
+                        f"{', '.join(stack_levels)} (default {ARRAY_DEFAULT}); for a "
+                        f"monolithic comb's one of {', '.join(COMB_LEVELS)} (default "
+                        f"{COMB_DEFAULT}); for a silicon die's design {DIE_LEVEL}, its only one "
+                        f"({DIE_COST})")
     p.add_argument("--sweep", action="store_true",
-                   help="also sweep plate thickness, bolt spacing and spacer grade")
+                   help="also sweep plate thickness, bolt spacing and spacer grade (a stacked "
+                        "array's)")
     add_cluster_args(p, local_default=False)
     add_output_args(p, "print one JSON object: the matrices, crosstalk_rel, cost and the sweep")
     p.set_defaults(func=run)
@@ -54,8 +69,10 @@ def run(args: argparse.Namespace) -> int:
         return shown
     model = array_level(args.model)
     plan = plan_from_args(args)
+    if args.sweep:
+        check_sweep(plan)
     record, result = crosstalk_record(plan, model)
-    rows = _sweep(plan, model, args) if args.sweep else None
+    rows = _sweep(plan, result.model, args) if args.sweep else None
     if args.json:
         print(dumps({**record, **({} if rows is None else {"sweep": rows})}, indent=1))
         return 0
@@ -63,26 +80,44 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def array_level(model: str | None) -> str:
-    """The crosstalk level of an array's design: ``--model`` as given, :data:`ARRAY_DEFAULT`
-    when left out.
+def array_level(model: str | None) -> str | None:
+    """The crosstalk level of an array's design: ``--model`` as given, None when left out
+    (the design's construction's cheapest level: :data:`ARRAY_DEFAULT` for the stacked
+    array, :data:`COMB_DEFAULT` for a comb). A level of the other construction is refused
+    once the plan is known (:func:`tactcad.mechanics.crosstalk_ladder.level_for`), before
+    anything is solved.
 
     Args:
         model: ``--model``, or None.
 
     Returns:
-        A level of the stack's ladder.
+        A level of the ladder, or None.
 
     Raises:
-        DesignError: ``--model`` a silicon die's level, which an array's stack has not.
+        DesignError: ``--model`` a silicon die's level, which an array has not.
     """
     if model is None:
-        return ARRAY_DEFAULT
+        return None
     if model not in crosstalk_models():
         raise DesignError("--model", model, f"one of {', '.join(crosstalk_models())} for an "
                           f"array's design", f"{model} is a silicon die's crosstalk, through "
-                          "its handle and die attach; an array's is its clamped stack's")
+                          "its handle and die attach; an array's is its clamped stack's or its "
+                          "comb sheets'")
     return model
+
+
+def check_sweep(plan) -> None:
+    """Refuse ``--sweep`` on an array other than the stacked one, before anything is solved.
+
+    Raises:
+        DesignError: ``--sweep`` on a comb (its sweep's inputs are a clamped stack's).
+    """
+    if plan.construction == "stacked":
+        return
+    raise DesignError("--sweep", True, f"left out for a {plan.construction} design",
+                      "the sweep changes a clamped stack's plate thickness, bolt spacing and "
+                      f"spacer grade, which a {plan.construction} design has not; change the "
+                      "design with --set and run again, or leave --sweep out")
 
 
 def _sweep(plan, model: str, args) -> list[dict]:

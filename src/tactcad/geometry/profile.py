@@ -259,6 +259,74 @@ def element_profile(g: ElementOutline) -> Profile:
     return Profile(outer=outer, holes=holes, start_holes=starts)
 
 
+class CombSheetOutline(Protocol):
+    """What the comb sheet's outline reads of one row's sheet (mm, sheet frame): the plan's
+    :class:`tactcad.partlib.array.comb_sheet.CombSheet` is one; geometry names no part
+    module."""
+
+    @property
+    def elements(self) -> Sequence[ElementOutline]: ...
+    @property
+    def offsets_mm(self) -> Sequence[float]: ...
+    @property
+    def ledges_mm(self) -> Sequence[float]: ...
+    @property
+    def length_mm(self) -> float: ...
+    @property
+    def holes(self) -> Sequence[RoundHole]: ...
+    @property
+    def start_hole_diameter_mm(self) -> float: ...
+
+
+def comb_sheet_profile(sheet: CombSheetOutline) -> Profile:
+    """Exact outline of one row's comb sheet (CCW, lines and arcs; sheet frame, mm).
+
+    The walk runs along the spine's underside, up the row's far end, then back
+    over every element from the last to the first: along its stop ledge to its
+    post (an inside corner filleted at the element's inside corner radius, as is
+    the slot's floor at the post's back), up the notch's back wall, over the notch, down the arm's front wall,
+    along the arm's underside, up the tip's front face, over the contact face
+    and back along the flat top over the web to the post's back face. The
+    element's own contour (:func:`element_profile`) is walked the same way, so the web,
+    notch and arm are the element's. The part's solid, its DXF and the comb's plane
+    finite-element model (:mod:`tactcad.mechanics.comb_fem2d`) all cut this one outline.
+    """
+    pts: list = [(0.0, 0.0), (sheet.length_mm, 0.0), (sheet.length_mm, sheet.ledges_mm[-1])]
+    n = len(sheet.elements)
+    for i in reversed(range(n)):
+        g, x0 = sheet.elements[i], sheet.offsets_mm[i]
+        R, xh, yc = g.notch_radius_mm, x0 + g.hinge_x_mm, g.notch_centre_y_mm
+        L, H, w, r = x0 + g.overall_length_mm, g.base_height_mm, g.tip_width_mm, g.inside_corner_radius_mm
+        ledge = sheet.ledges_mm[i]
+        # the ledge meets the post's front wall in a fillet of the wire's inside radius
+        pts += [(xh - R + r, ledge), ("arc", (xh - R + r, ledge + r), False), (xh - R, ledge + r),
+                (xh - R, yc), ("arc", (xh, yc), False), (xh + R, yc),
+                (xh + R, g.arm_underside_y_mm), (L, g.arm_underside_y_mm), (L, g.tip_top_y_mm),
+                (L - w, g.tip_top_y_mm), (L - w, H + r), ("arc", (L - w - r, H + r), False),
+                (L - w - r, H), (x0, H)]
+        if i == 0:
+            pts.append((x0, 0.0))
+        else:  # the post's back wall meets the slot's floor in a fillet too
+            floor = sheet.ledges_mm[i - 1]
+            pts += [(x0, floor + r), ("arc", (x0 - r, floor + r), False), (x0 - r, floor)]
+    holes = tuple(Circle((h.x_mm, h.y_mm), h.diameter_mm / 2) for h in sheet.holes)
+    starts = tuple(Circle(c.centre, sheet.start_hole_diameter_mm / 2) for c in holes)
+    return Profile(outer=_chain(_without_repeats(pts)), holes=holes, start_holes=starts)
+
+
+def _without_repeats(points: list) -> list:
+    """The walk less a vertex that repeats the one before (the first post's
+    back face ends where the walk began)."""
+    out: list = []
+    for p in points:
+        if out and not (isinstance(p, tuple) and p and p[0] == "arc") and p == out[-1]:
+            continue
+        out.append(p)
+    if len(out) > 1 and out[-1] == out[0]:
+        out.pop()
+    return out
+
+
 def web_thickness_at(g: NotchShape, x: float) -> float:
     """Material height (mm) over the notch at ``x`` (element frame):
     h(x) = t + R - sqrt(R^2 - (x - x_h)^2) for |x - x_h| <= R."""

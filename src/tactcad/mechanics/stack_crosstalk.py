@@ -41,7 +41,8 @@ for point loads at the nodes) with a node at every element's mid-plane and
 every layer face; its stiffness (a few hundred unknowns at most, held dense) is
 solved once for all n unit tip loads (``scipy.linalg.solve``, symmetric positive definite).
 
-Levels, declared once in :data:`CROSSTALK_LEVELS` (cheapest first):
+Levels, declared once in :data:`tactcad.mechanics.crosstalk_ladder.CROSSTALK_LEVELS`
+(cheapest first) with the monolithic comb's (:mod:`tactcad.mechanics.comb_crosstalk`):
 
 * ``stack-beam``: Euler-Bernoulli stack. Error estimate: as the stiffness
   ladder's, its distance to the next level up (``stack-timoshenko``, which
@@ -73,8 +74,15 @@ from typing import Mapping
 import numpy as np
 
 from tactcad.design.array_plan import Plan
-from tactcad.errors import DesignError, TactcadError
-from tactcad.mechanics.level_registry import LevelRegistry
+# the ladder, its refusals and the result every level gives (one registry for every
+# construction's levels), here under their former names too
+from tactcad.mechanics.crosstalk_ladder import (CROSSTALK_LADDER, CROSSTALK_LEVELS,  # noqa: F401
+                                                CrosstalkInputError, CrosstalkLevel,
+                                                CrosstalkResult, UnknownCrosstalkModelError,
+                                                construction_levels, crosstalk_models,
+                                                crosstalk_of, decoupling_matrix, default_level,
+                                                plan_crosstalk, register_crosstalk_level,
+                                                result_of)
 
 #: Shear correction factor of a rectangle (Timoshenko and Gere).
 SHEAR_FACTOR = 5.0 / 6.0
@@ -82,50 +90,6 @@ SHEAR_FACTOR = 5.0 / 6.0
 CONE_HALF_ANGLE_DEG = 30.0
 #: Sub-elements per layer of the 1D stack mesh (exact for nodal loads; 2 keeps mid-layer nodes).
 SUBDIVISIONS = 2
-
-
-@dataclass(frozen=True)
-class CrosstalkLevel:
-    """One level of the crosstalk ladder: ``--model NAME``, its estimator
-    ``function(inputs) -> CrosstalkResult`` in ``module``, its typical cost,
-    and whether it meshes (its results are then kept in the result store)."""
-
-    name: str
-    module: str
-    function: str
-    cost: str
-    meshed: bool = False
-
-
-class UnknownCrosstalkModelError(TactcadError, ValueError):
-    def __init__(self, model: str):
-        super().__init__(f"crosstalk model = {model!r}: allowed {', '.join(crosstalk_models())}")
-
-
-#: The crosstalk ladder (:mod:`tactcad.mechanics.level_registry`).
-CROSSTALK_LADDER: LevelRegistry[CrosstalkLevel] = LevelRegistry("crosstalk",
-                                                               UnknownCrosstalkModelError)
-#: The crosstalk levels by name, cheapest first (:func:`register_crosstalk_level` adds to it).
-CROSSTALK_LEVELS: dict[str, CrosstalkLevel] = CROSSTALK_LADDER.levels
-#: Add a crosstalk level (after the others); ValueError for a name taken.
-register_crosstalk_level = CROSSTALK_LADDER.register
-#: The crosstalk levels' names, cheapest first.
-crosstalk_models = CROSSTALK_LADDER.names
-
-
-for _level in (CrosstalkLevel("stack-beam", __name__, "estimate_stack_beam", "~5 ms"),
-               CrosstalkLevel("stack-timoshenko", __name__, "estimate_stack_timoshenko",
-                              "~15 ms"),
-               CrosstalkLevel("stack-fem3d", "tactcad.mechanics.stack_fem3d",
-                              "estimate_stack_fem3d", "~30 s", meshed=True)):
-    register_crosstalk_level(_level)
-
-
-
-
-class CrosstalkInputError(TactcadError, ValueError):
-    def __init__(self, field: str, value, allowed: str):
-        super().__init__(f"{field} = {value!r}: allowed {allowed}")
 
 
 # ---------------------------------------------------------------------------
@@ -372,45 +336,6 @@ def solve_row(inputs: StackInputs, row: int, shear: bool) -> RowSolution:
 # ---------------------------------------------------------------------------
 # Result
 # ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class CrosstalkResult:
-    """The array's crosstalk at one level.
-
-    Attributes:
-        model: the level's name. elements: element numbers (matrix order).
-        sensitivity: n x n, gauge i's grid-averaged strain per newton on tip j (1/N).
-        compliance: n x n, tip i's displacement per newton on tip j (mm/N).
-        crosstalk_rel: max over i of max_{j != i} |S_ij| / |S_ii|.
-        worst: (gauge, loaded element) of that maximum.
-        decoupling: inverse of S normalised by its diagonal (S_ij / S_ii).
-        asymmetry_rel: max |C - C^T| / max |C| (Maxwell-Betti).
-        error_estimate_rel: see the module docstring. seconds: wall time (s).
-        basis: the model in words.
-    """
-
-    model: str
-    elements: tuple[int, ...]
-    sensitivity: np.ndarray
-    compliance: np.ndarray
-    crosstalk_rel: float
-    worst: tuple[int, int]
-    decoupling: np.ndarray
-    asymmetry_rel: float
-    error_estimate_rel: float
-    seconds: float
-    basis: str
-
-    def as_json(self) -> dict:
-        return {"model": self.model, "elements": list(self.elements),
-                "crosstalk_rel": self.crosstalk_rel,
-                "worst": {"gauge": self.worst[0], "loaded_element": self.worst[1]},
-                "error_estimate_rel": self.error_estimate_rel, "seconds": self.seconds,
-                "asymmetry_rel": self.asymmetry_rel,
-                "sensitivity_strain_per_N": self.sensitivity.tolist(),
-                "compliance_mm_per_N": self.compliance.tolist(),
-                "decoupling": self.decoupling.tolist(), "basis": self.basis}
-
-
 BASIS = ("stack of element bases and spacers bonded by the bolt preload, a beam between the "
          "clamp plates (rigid in plane, out of plane on the bridge's torsion), the mounting "
          "holes fixed, rows uncoupled")
@@ -436,27 +361,10 @@ def matrices(inputs: StackInputs, shear: bool) -> tuple[np.ndarray, np.ndarray]:
     return S, C
 
 
-def crosstalk_of(S: np.ndarray) -> tuple[float, tuple[int, int]]:
-    """(max_i max_{j != i} |S_ij| / |S_ii|, (i, j) of it); 0 for one element."""
-    ratio = np.abs(S) / np.abs(np.diag(S))[:, None]
-    np.fill_diagonal(ratio, 0.0)
-    i, j = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
-    return float(ratio[i, j]), (int(i), int(j))
-
-
-def decoupling_matrix(S: np.ndarray) -> np.ndarray:
-    """Inverse of S normalised by its diagonal: forces = D @ (readings / own sensitivity)."""
-    return np.linalg.inv(S / np.diag(S)[:, None])
-
-
 def _result(model: str, inputs: StackInputs, shear: bool, error: float, t0: float
             ) -> CrosstalkResult:
     S, C = matrices(inputs, shear)
-    rel, (i, j) = crosstalk_of(S)
-    asym = float(np.max(np.abs(C - C.T)) / np.max(np.abs(C)))
-    return CrosstalkResult(model, inputs.numbers, S, C, rel,
-                           (inputs.numbers[i], inputs.numbers[j]), decoupling_matrix(S), asym,
-                           error, time.perf_counter() - t0, BASIS)
+    return result_of(model, inputs.numbers, S, C, error, t0, BASIS)
 
 
 def _rel_change(a: float, b: float) -> float:
@@ -495,27 +403,16 @@ def estimate_crosstalk(inputs: StackInputs, model: str = "stack-beam") -> Crosst
     return CROSSTALK_LADDER.run(model, (inputs,), {}, label="stack")
 
 
-def plan_crosstalk(plan: Plan, model: str = "stack-beam", **changes) -> CrosstalkResult:
-    """:func:`estimate_crosstalk` of the plan's stack (``changes``: :func:`stack_inputs`).
-
-    Raises:
-        UnknownCrosstalkModelError: ``model`` is no level.
-        DesignError: the plan's construction is no clamped stack (the model couples the
-            elements through its bolts and plates; a comb has none).
-    """
-    from tactcad.design.construction_registry import stack_crosstalk_reason
-
-    if model not in CROSSTALK_LEVELS:
-        raise UnknownCrosstalkModelError(model)
-    why = stack_crosstalk_reason(plan)
-    if why:
-        raise DesignError("array.construction", plan.construction,
-                          "a construction the stack crosstalk model describes (stacked)", why)
-    return estimate_crosstalk(stack_inputs(plan, **changes), model)
-
-
 #: The level the verification matrix and the export use (both levels cost well under a second).
 VERIFY_MODEL = "stack-timoshenko"
+
+
+def verify_model(plan: Plan) -> str | None:
+    """The level of ``plan``'s ``max_crosstalk_rel`` record: :data:`VERIFY_MODEL` for the
+    stacked array, another construction's cheapest level (None: no level describes it)."""
+    if plan.construction == "stacked":
+        return VERIFY_MODEL
+    return default_level(plan.construction)
 
 
 def crosstalk_in_force(result: CrosstalkResult, full_scale_force_N: float,
@@ -559,11 +456,13 @@ def stated_max_crosstalk(plan: Plan) -> float | None:
 def crosstalk_records(plan: Plan, full_scale_force_N: float | None = None,
                       force_resolution_N: Mapping[int, float] | None = None) -> list[dict]:
     """The verification matrix's ``max_crosstalk_rel`` record when the design
-    states it (at :data:`VERIFY_MODEL`), else none; with the full-scale force and
+    states it (at :data:`VERIFY_MODEL` for the stacked array), else none; with the full-scale force and
     the elements' force resolution it also states the crosstalk in newtons
-    (:func:`crosstalk_in_force`)."""
+    (:func:`crosstalk_in_force`). A construction of another level than the stack's is
+    verified at its cheapest (:func:`verify_model`)."""
     target = stated_max_crosstalk(plan)
-    return [] if target is None else [crosstalk_record(plan, target, VERIFY_MODEL,
+    model = verify_model(plan) or VERIFY_MODEL  # no level: plan_crosstalk refuses it
+    return [] if target is None else [crosstalk_record(plan, target, model,
                                                        full_scale_force_N, force_resolution_N)]
 
 

@@ -99,24 +99,28 @@ def budget_record(plan, model: str = "closed-form", force_N: float | None = None
     return record, budget
 
 
-def crosstalk_record(plan, model: str = "stack-beam") -> tuple[dict, Any]:
-    """The clamped stack's crosstalk (:func:`tactcad.mechanics.stack_crosstalk.plan_crosstalk`:
-    the n x n gauge sensitivity, tip displacements, crosstalk_rel, the decoupling matrix)
-    and, at the rated full-scale force, each gauge's crosstalk in newtons against its force
-    resolution through the design's read-out chain (closed form).
+def crosstalk_record(plan, model: str | None = None) -> tuple[dict, Any]:
+    """The array's crosstalk (:func:`tactcad.mechanics.crosstalk_ladder.plan_crosstalk`: the
+    stacked array's clamped stack or a monolithic comb's row sheets; the n x n gauge
+    sensitivity, tip displacements, crosstalk_rel, the decoupling matrix) and, at the rated
+    full-scale force, each gauge's crosstalk in newtons against its force resolution through
+    the design's read-out chain (closed form).
 
     Args:
-        plan: the design's plan. model: a crosstalk level (``stack-beam`` ...).
+        plan: the design's plan. model: a crosstalk level of its construction
+            (``stack-beam`` ..., ``comb-beam`` ...; None: its construction's cheapest).
 
     Returns:
         (the record ``tactcad crosstalk --json`` prints, less its ``--sweep``; the result).
 
     Raises:
         UnknownCrosstalkModelError: ``model`` is no crosstalk level.
-        DesignError: the plan's construction is no clamped stack.
+        DesignError: no level describes the plan's construction, or ``model`` describes
+            another construction (refused before anything is solved).
     """
+    from tactcad.mechanics.crosstalk_ladder import plan_crosstalk
     from tactcad.mechanics.readout_chain import element_force_resolution_N
-    from tactcad.mechanics.stack_crosstalk import crosstalk_in_force, plan_crosstalk
+    from tactcad.mechanics.stack_crosstalk import crosstalk_in_force
     from tactcad.studies.verification import rated_full_scale_force
 
     result = plan_crosstalk(plan, model)

@@ -155,17 +155,25 @@ def skfem_mesh(rm: RegionMesh, curved: bool = True):
     """scikit-fem mesh of a :class:`RegionMesh`: ``MeshTri2``/``MeshTet2``
     with the arcs' midside nodes on the exact circles (``curved``), else the
     linear ``MeshTri``/``MeshTet`` (straight-sided cells)."""
+    return skfem_mesh_of(rm.p, rm.t, rm.arcs if curved else ())
+
+
+def skfem_mesh_of(p: np.ndarray, t: np.ndarray, arcs: Sequence = ()):
+    """scikit-fem mesh of the simplices ``t`` on the vertices ``p`` (shape (dim, n), mm):
+    ``MeshTri2``/``MeshTet2`` whose edges on one of ``arcs``' circles (anything with a
+    ``centre`` and a ``radius``) have their midside node on it, the linear
+    ``MeshTri``/``MeshTet`` without arcs."""
     import skfem
 
-    dim = rm.p.shape[0]
-    lin = (skfem.MeshTri if dim == 2 else skfem.MeshTet)(rm.p, rm.t)
-    if not curved or not rm.arcs:
+    dim = p.shape[0]
+    lin = (skfem.MeshTri if dim == 2 else skfem.MeshTet)(p, t)
+    if not arcs:
         return lin
     quad_cls = skfem.MeshTri2 if dim == 2 else skfem.MeshTet2
     quad = quad_cls.from_mesh(lin)
     nv = lin.p.shape[1]
     edges = lin.facets if dim == 2 else lin.edges
-    doflocs = curved_doflocs(quad.doflocs, lin.p, edges, nv + np.arange(edges.shape[1]), rm.arcs)
+    doflocs = curved_doflocs(quad.doflocs, lin.p, edges, nv + np.arange(edges.shape[1]), arcs)
     return quad_cls(doflocs, quad.t)
 
 

@@ -22,10 +22,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from tactcad.geometry.profile import Circle, Profile, _chain
+from tactcad.geometry.profile import Profile, comb_sheet_profile
 from tactcad.kernel.shapes import extrude_profile
 from tactcad.partlib.array.element import WEB_RANGE_MM, FITTED_DOMAIN, ElementGeometry
-from tactcad.partlib.array.prism import Hole, hole_circles, prism_bbox
+from tactcad.partlib.array.prism import Hole, prism_bbox
 from tactcad.partlib.base import RGB, ArrayContext, ArrayPart, BuildStep, DrawingRecord, PartData
 from tactcad.vocabulary.process import CUT_PROCESSES, DEFAULT_CUT_PROCESS, cut_process
 from tactcad.vocabulary.schema import Section, choice, listing, number
@@ -166,51 +166,10 @@ class CombGeometry:
 
 
 def comb_profile(sheet: CombSheet) -> Profile:
-    """Exact outline of one row's comb sheet (CCW, lines and arcs; sheet frame, mm).
-
-    The walk runs along the spine's underside, up the row's far end, then back
-    over every element from the last to the first: along its stop ledge to its
-    post (an inside corner filleted at the element's inside corner radius, as is
-    the slot's floor at the post's back), up the notch's back wall, over the notch, down the arm's front wall,
-    along the arm's underside, up the tip's front face, over the contact face
-    and back along the flat top over the web to the post's back face. The
-    element's own contour (:func:`tactcad.geometry.profile.element_profile`)
-    is walked the same way, so the web, notch and arm are the element's.
-    """
-    pts: list = [(0.0, 0.0), (sheet.length_mm, 0.0), (sheet.length_mm, sheet.ledges_mm[-1])]
-    n = len(sheet.elements)
-    for i in reversed(range(n)):
-        g, x0 = sheet.elements[i], sheet.offsets_mm[i]
-        R, xh, yc = g.notch_radius_mm, x0 + g.hinge_x_mm, g.notch_centre_y_mm
-        L, H, w, r = x0 + g.overall_length_mm, g.base_height_mm, g.tip_width_mm, g.inside_corner_radius_mm
-        ledge = sheet.ledges_mm[i]
-        # the ledge meets the post's front wall in a fillet of the wire's inside radius
-        pts += [(xh - R + r, ledge), ("arc", (xh - R + r, ledge + r), False), (xh - R, ledge + r),
-                (xh - R, yc), ("arc", (xh, yc), False), (xh + R, yc),
-                (xh + R, g.arm_underside_y_mm), (L, g.arm_underside_y_mm), (L, g.tip_top_y_mm),
-                (L - w, g.tip_top_y_mm), (L - w, H + r), ("arc", (L - w - r, H + r), False),
-                (L - w - r, H), (x0, H)]
-        if i == 0:
-            pts.append((x0, 0.0))
-        else:  # the post's back wall meets the slot's floor in a fillet too
-            floor = sheet.ledges_mm[i - 1]
-            pts += [(x0, floor + r), ("arc", (x0 - r, floor + r), False), (x0 - r, floor)]
-    holes = tuple(Circle((x, y), d / 2) for x, y, d in hole_circles(sheet.holes))
-    starts = tuple(Circle(c.centre, sheet.start_hole_diameter_mm / 2) for c in holes)
-    return Profile(outer=_chain(_without_repeats(pts)), holes=holes, start_holes=starts)
-
-
-def _without_repeats(points: list) -> list:
-    """The walk less a vertex that repeats the one before (the first post's
-    back face ends where the walk began)."""
-    out: list = []
-    for p in points:
-        if out and not (isinstance(p, tuple) and p and p[0] == "arc") and p == out[-1]:
-            continue
-        out.append(p)
-    if len(out) > 1 and out[-1] == out[0]:
-        out.pop()
-    return out
+    """Exact outline of one row's comb sheet (CCW, lines and arcs; sheet frame, mm):
+    :func:`tactcad.geometry.profile.comb_sheet_profile`, the one walk the solid, the DXF and
+    the mechanics' plane model of the sheet cut."""
+    return comb_sheet_profile(sheet)
 
 
 def build(sheet: CombSheet) -> Solid:

@@ -164,8 +164,8 @@ def _crosstalk(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
 
 
 def check_die_crosstalk_level(model: str | None) -> None:
-    """Refuse a crosstalk ``--model`` a die has not: the stack's levels model an array's
-    clamped stack, a die has its one level.
+    """Refuse a crosstalk ``--model`` a die has not: the array's levels model its clamped
+    stack or its comb sheets, a die has its one level.
 
     Args:
         model: ``--model`` as given, or None when left out (the die's level).
@@ -180,8 +180,8 @@ def check_die_crosstalk_level(model: str | None) -> None:
         return
     raise DesignError("--model", model, f"{CROSSTALK_LEVEL} for a die (its only crosstalk "
                       f"level: 3D FE through its handle and die attach, {CROSSTALK_COST})",
-                      f"{model} models an array's clamped stack of bases and spacers, which a "
-                      "silicon die has not",
+                      f"{model} models an array's coupling (a clamped stack of bases and "
+                      "spacers, or a comb's row sheets), which a silicon die has not",
                       alternatives=[{"option": f"--model {CROSSTALK_LEVEL}",
                                      "words": "the die's crosstalk, or leave --model out"}])
 
