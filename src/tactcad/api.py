@@ -58,9 +58,12 @@ def plain(value: Any) -> Any:
         value: a result (dicts, lists, tuples, numbers, NumPy values, text, None).
 
     Returns:
-        The same structure with no NumPy type left (tuples stay tuples; objects, such
-        as a dataclass, as they are).
+        The same structure with no NumPy type left and every infinite or NaN number None,
+        as the command's JSON writes it (tuples stay tuples; objects, such as a
+        dataclass, as they are).
     """
+    import math
+
     import numpy as np
 
     if isinstance(value, Mapping):
@@ -72,7 +75,9 @@ def plain(value: Any) -> Any:
     if isinstance(value, np.ndarray):
         return plain(value.tolist())
     if isinstance(value, np.generic):
-        return value.item()
+        return plain(value.item())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None  # as the command's --json writes it (JSON has no inf or NaN)
     return value
 
 
@@ -682,6 +687,8 @@ class Project:
         """
         import numbers
 
+        import numpy as np
+
         from tactcad.errors import DesignError
         from tactcad.studies.project_reports import modes_record
 
@@ -689,8 +696,11 @@ class Project:
             element = element_number(element, len(self.plan.slots), "element")
         if isinstance(modes, bool) or not isinstance(modes, numbers.Integral):
             raise DesignError("modes", modes, "a whole number 1 ... 20")
-        if isinstance(tip_mass_mg, bool) or not isinstance(tip_mass_mg, numbers.Real):
+        if isinstance(tip_mass_mg, bool) or not isinstance(tip_mass_mg, numbers.Real) \
+                or not 0.0 <= tip_mass_mg <= 10_000.0:  # NaN and a huge int fail here too
             raise DesignError("tip_mass_mg", tip_mass_mg, "a number 0 ... 10000 mg")
+        if not isinstance(bare, (bool, np.bool_)):
+            raise DesignError("bare", bare, "True or False")
         return modes_record(self.plan, model, int(modes), element, bool(bare),
                             float(tip_mass_mg))[0]
 

@@ -104,3 +104,17 @@ def test_a_die_project_refuses_the_arrays_keywords_by_name():
                 str(err.value)
             checked += 1
     assert checked >= 4  # tolerance's what-if tolerances and reference at least
+
+
+def test_a_die_projects_budget_is_the_json_the_command_prints_unreadable_terms_included():
+    """An unreadable term (the posts as made, at the range's stiff end) is infinite in the
+    computation: the command writes it as null, and so does the API, so its result is
+    valid JSON with the command's values."""
+    import tactcad
+
+    mine = tactcad.load(EXAMPLE).budget()
+    text = json.dumps(mine, allow_nan=False)  # raises on an inf or NaN left in it
+    printed = json.loads(run_cli("budget", "--design", str(EXAMPLE), "--json").stdout)
+    terms = printed["kobj_budget"]["terms_rel"]
+    assert any(v is None for values in terms.values() for v in values)  # the case at hand
+    assert json.loads(text)["kobj_budget"]["terms_rel"] == terms

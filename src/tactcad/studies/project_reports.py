@@ -254,9 +254,12 @@ def strength_record(plan, model: str = "closed-form",
         UnknownModelError: ``model`` is no ladder level.
         DesignError: the material has no yield strength.
     """
+    from tactcad.mechanics.ladder import UnknownModelError, models
     from tactcad.studies.reference_loads import reference_load_of
     from tactcad.studies.strength_studies import plan_strength
 
+    if not isinstance(model, str) or model not in models():
+        raise UnknownModelError(model)
     records = plan_strength(plan, model, progress=progress,
                             reference_load=reference_load_of(plan))
     return ({"elements": [r.as_json() for r in records],
