@@ -362,6 +362,9 @@ def _dispatched(argv: list[str], as_json: bool) -> int:
     except UsageError as exc:  # argparse's wording, on one line
         if as_json:
             return report_error(error_record(exc, EXIT_INPUT), as_json)
+        from tactcad.commands.notices import print_unsaid
+
+        print_unsaid()
         print(f"{exc.parser.prog}: error: {exc} (see {exc.parser.prog} --help)", file=sys.stderr)
         return EXIT_INPUT
     except TactcadError as exc:
@@ -466,12 +469,16 @@ def error_record(exc: BaseException, exit_code: int, message: str | None = None)
 
 
 def report_error(record: dict, as_json: bool) -> int:
-    """Print an error record (JSON on stdout, or one line on stderr); its exit code."""
+    """Print an error record (JSON on stdout, or one line on stderr, after the warnings
+    issued before it that ``--quiet`` kept back: :func:`tactcad.commands.notices.print_unsaid`);
+    its exit code."""
     from tactcad.commands.finite_json import finite
+    from tactcad.commands.notices import print_unsaid
 
     if as_json:
         print(json.dumps({"error": finite(record)}, indent=2, default=str, allow_nan=False))
     else:
+        print_unsaid()
         print(f"tactcad: error: {record['message']}", file=sys.stderr)
         for alt in record.get("alternatives") or ():  # those the message does not quote
             if alt.get("option") and alt["option"] not in record["message"]:

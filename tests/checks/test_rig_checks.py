@@ -139,6 +139,48 @@ def test_a_kit_that_no_longer_spans_the_edited_kobj_range_fails_naming_what_to_s
     assert "[" + ", ".join(f"{k:g}" for k in suggested) + "]" in kit.detail
 
 
+def test_a_kit_suggestion_names_each_scenes_sample_to_set_and_pasted_the_kit_passes(tmp_path):
+    """The suggestion said "each scene's sample_stiffness_N_per_mm one of them" without the
+    key's file, table or value: it names them, and the project pasted with them loads (every
+    scene's sample one of the rigs') and passes the kit."""
+    import re
+
+    from tactcad.project_folder import new_project
+
+    made = new_project(tmp_path / "lab2")
+    text = made.design.read_text(encoding="utf-8")
+    made.design.write_text(re.sub(r"kobj_range_N_per_mm = \[[^\]]*\]",
+                                  "kobj_range_N_per_mm = [20.0, 80.0]", text), encoding="utf-8")
+    project = tactcad.load(made.design).validated
+    context = CheckContext(project.plan, Path("."), None, project)
+    [(_, results)] = list(rig_group(context))
+    [kit] = [r for r in results if r.check == "rig sample kit"]
+    assert not kit.passed
+    named = dict(re.findall(r"\[scene\.([\w-]+)\] sample_stiffness_N_per_mm = ([\d.e+-]+)",
+                            kit.detail))
+    stating = [n for n, s in project.scenes.items() if s.sample_stiffness_N_per_mm is not None]
+    assert stating and sorted(named) == sorted(stating), kit.detail
+    assert "set scenes.toml [scene." in kit.detail
+    samples = kit.detail.split("e.g. [")[1].split("]")[0]
+    rigs_file = made.design.parent / "rigs.toml"
+    table = r"(?:(?!\n\[).)*?"  # within the table: up to the next table's header
+    rigs_file.write_text(re.sub(rf"(\n\[sample\]{table}\nstiffness_N_per_mm = )\[[^\]]*\]",
+                                rf"\g<1>[{samples}]", rigs_file.read_text(encoding="utf-8"),
+                                flags=re.S), encoding="utf-8")
+    scenes_file = made.design.parent / "scenes.toml"
+    scenes = scenes_file.read_text(encoding="utf-8")
+    for name, value in named.items():
+        scenes = re.sub(rf"(\[scene\.{re.escape(name)}\]{table}\nsample_stiffness_N_per_mm = )\S+",
+                        rf"\g<1>{value}", scenes, flags=re.S)
+    scenes_file.write_text(scenes, encoding="utf-8")
+    pasted = tactcad.load(made.design).validated  # every scene's sample one of the kit's
+    assert {n: s.sample_stiffness_N_per_mm for n, s in pasted.scenes.items()
+            if n in named} == {n: float(v) for n, v in named.items()}
+    [(_, results)] = list(rig_group(CheckContext(pasted.plan, Path("."), None, pasted)))
+    [kit] = [r for r in results if r.check == "rig sample kit"]
+    assert kit.passed, kit.detail
+
+
 def test_the_designs_own_samples_span_its_range_though_cast_to_3_digits():
     # the paper's range ends at 10.01 N/mm; its own samples, to 3 digits, at 10.0
     from tactcad.studies.design_loads import design_samples

@@ -596,3 +596,27 @@ def test_a_set_name_refused_pastes_the_cleaned_name_as_a_set(capsys):
     paste = err["alternatives"][0]["option"]
     assert paste == """--set 'design.name="Zele"'"""
     assert cli.main(["scenes", *shlex.split(paste), "--json"]) == 0
+
+
+@pytest.mark.parametrize("typed, pasted", [("Zélé", "Zele"), ("Zele", "Zele")])
+def test_a_set_name_whose_quotes_the_shell_ate_pastes_it_quoted(capsys, typed, pasted):
+    """``--set design.name="Zélé"`` typed in bash reaches tactcad as ``design.name=Zélé``, no
+    TOML value: the refusal pastes the quoted option, the name cleaned where its own rule
+    refuses it, and the paste runs."""
+    import shlex
+
+    assert cli.main(["scenes", "--set", f"design.name={typed}", "--json"]) == 2
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert err["field"] == "design.name" and "a TOML value" in err["allowed"]
+    paste = err["alternatives"][0]["option"]
+    assert paste == f"""--set 'design.name="{pasted}"'"""
+    assert cli.main(["scenes", *shlex.split(paste), "--json"]) == 0
+
+
+def test_a_set_value_of_no_bare_word_offers_no_quoted_paste():
+    with pytest.raises(DesignError) as err:
+        parse_override("element.web_thickness_mm=0,3")
+    assert err.value.alternatives == []
+    with pytest.raises(DesignError) as err:
+        parse_override("element.process=wire-edm")
+    assert err.value.alternatives[0]["option"] == """--set 'element.process="wire-edm"'"""

@@ -179,6 +179,34 @@ def test_warnings_are_one_line_each_once_in_json_and_silenced_by_quiet(capsys):
     assert all("poisson_ratio" in w for w in doc["warnings"])
 
 
+@pytest.mark.parametrize("command", [
+    ["scenes"],
+    ["design", "--kr-over-km", "6", "--kobj-range", "5", "50", "--full-scale-force", "0.1",
+     "--verify", "none"]])
+def test_a_refusal_prints_the_warnings_issued_before_it_once_each_even_quiet(
+        command, capsys, tmp_path):
+    """A design that warns (a --set key given twice) and is then refused (its last value out
+    of range): the warning led to the refusal, so it is printed before it on stderr, once,
+    with --quiet too (which kept it back, and printed only the refusal)."""
+    argv = [*command, "--set", "element.web_thickness_mm=0.2",
+            "--set", "element.web_thickness_mm=99"]
+    if command[0] == "design":
+        argv += ["--out", str(tmp_path / "d.toml")]
+    warned = ("tactcad: warning: --set element.web_thickness_mm given 2 times (0.2, 99): "
+              "the last, 99, is taken")
+    for quiet in ([], ["--quiet"]):
+        assert cli.main([*argv, *quiet]) == 2
+        err = capsys.readouterr().err.splitlines()
+        assert err.count(warned) == 1, err
+        refused = [i for i, line in enumerate(err) if line.startswith("tactcad: error: ")]
+        assert refused and err.index(warned) < refused[0], err
+        if quiet:  # no heads: the warning, then the refusal
+            assert err[0] == warned, err
+    assert cli.main([*argv, "--json"]) == 2
+    out = capsys.readouterr()
+    assert out.err == "" and json.loads(out.out)["warnings"] == [warned.split("warning: ")[1]]
+
+
 @pytest.mark.slow
 def test_the_input_fuzz_runs_and_counts_tracebacks():
     import subprocess

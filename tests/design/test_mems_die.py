@@ -722,6 +722,35 @@ def test_a_refused_set_of_a_die_is_named_as_typed_not_as_the_files(tmp_path, com
     assert "grasper_jaw_5mm_mems.toml" not in bad.stderr and not (tmp_path / "bad").exists()
 
 
+@pytest.mark.parametrize("typed", ['die.name="Zélé-1"', "die.name=Zélé-1"])
+def test_a_refused_die_name_pastes_a_cleaned_one_that_loads(tmp_path, typed):
+    """A die's name of characters a GDSII cell refuses was refused with no name to paste, as
+    design.name's refusal offers one; typed without the quotes the shell ate, the same."""
+    import shlex
+
+    from tactcad.commands import parse_override
+    from tactcad.products.silicon_die.design.die_file import load_die_design
+
+    design = str(Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_5mm_mems"
+                 / "grasper_jaw_5mm_mems.toml")
+    bad = run_cli("die", "--design", design, "--set", typed, "--out", str(tmp_path / "bad"),
+                  "--json")
+    assert bad.returncode == 2, bad.stderr
+    err = json.loads(bad.stdout)["error"]
+    assert err["field"] == "die.name"
+    paste = err["alternatives"][0]["option"]
+    assert paste == """--set 'die.name="Zele_1"'"""
+    key, value = parse_override(shlex.split(paste)[1])
+    assert load_die_design(design, {key: value}).die.name == "Zele_1"
+
+
+@pytest.mark.parametrize("text", ["Zélé-1", "3d sensor", "", "__", "a.b-c", "x" * 40, "Größe"])
+def test_a_suggested_die_name_is_a_cell_name(text):
+    from tactcad.products.silicon_die.design.die_file import is_cell_name, suggested_cell_name
+
+    assert is_cell_name(suggested_cell_name(text))
+
+
 ATTACH_TABLE = ('\n[attach]\nmaterial = "a lab\'s silicone adhesive"\nmodulus_MPa = 5.0\n'
                 'thickness_um = 60.0\nsource = "its data sheet, cured 1 h at 150 C"\n')
 

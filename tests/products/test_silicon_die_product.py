@@ -411,6 +411,28 @@ def test_a_dies_changed_requirement_rebuilds_only_the_files_it_shapes(die_folder
     assert built and fresh == second
 
 
+@pytest.mark.slow  # a whole export of a die, then one read back from the store
+def test_a_dies_export_json_has_the_seconds_and_job_counts_and_quiet_prints_what_failed(
+        die_folder):
+    """`export --help` promises --json's seconds, jobs run and reused: a die's export gives
+    them as an array's does (every job reused when the whole export is read from the store);
+    `--quiet` of a die whose checks fail still prints each failed check."""
+    failing = ("--set", "die.kobj_accuracy_rel=0.001")  # the die's budget reaches ~0.036
+    r = run_cli("export", *failing, "--out", "exports", "--json", cwd=die_folder)
+    assert r.returncode == 1, r.stdout + r.stderr
+    first = json.loads(r.stdout)
+    assert first["seconds"] > 0 and first["jobs_run"] > 0 and first["jobs_reused"] >= 0
+    q = run_cli("export", *failing, "--out", "exports", "--quiet", cwd=die_folder)
+    assert q.returncode == 1 and q.stderr == "", q.stderr
+    failed = [c for c in first["checks"] if c["status"] == "fail"]
+    assert failed and q.stdout.count("FAIL") == len(failed), q.stdout
+    assert all(c["check"] in q.stdout for c in failed)
+    again = json.loads(run_cli("export", *failing, "--out", "exports", "--json",
+                               cwd=die_folder).stdout)
+    assert again["jobs_run"] == 0
+    assert again["jobs_reused"] == first["jobs_run"] + first["jobs_reused"]
+
+
 @pytest.mark.parametrize("choice", [("--only", "dxf"), ("--scene", "x"), ("--part", "x")])
 def test_an_arrays_choice_of_export_files_on_a_die_says_what_it_writes_and_pastes_it(
         die_folder, choice):

@@ -284,6 +284,54 @@ def test_a_refusals_force_is_the_largest_judged_force_on_the_grid(carried_N):
     assert force_frontier(lambda f: None, 0.5805) is None
 
 
+def test_a_refusals_force_is_found_far_below_the_best_layouts_own_force():
+    """On a soft K_obj range the search may design only far below the best layout's own
+    largest force (0.004826 N against 0.0254 N): the steps down do not stop at a few per
+    cent, and the force found is the largest on the grid that designs, rounded down."""
+    from tactcad.studies.layout_search import force_frontier
+    from tactcad.vocabulary.rounding import round_down
+
+    carried = 0.004826
+    judged: list[float] = []
+
+    def designed(force: float) -> str | None:
+        judged.append(force)
+        return "layout" if force <= carried else None
+
+    force, layout = force_frontier(designed, 0.0254)
+    assert layout == "layout" and force <= carried
+    assert round_down(force + 1e-5, 3) > carried  # 0.00482: the next grid force is not carried
+    assert len(judged) < 40  # whole design searches, each a second or more
+    assert force_frontier(lambda f: None, 0.0254) is None
+
+
+@pytest.mark.slow  # two whole design searches through the command line
+def test_a_soft_range_refusal_offers_a_force_that_designs_far_below_the_best_layouts(
+        tmp_path, capsys, monkeypatch):
+    """A soft K_obj range (0.02-0.2 N/mm) whose best layout's own largest force is far above
+    any the search designs at (its estimate made five times too large here) still offers a
+    force to paste, and pasted it designs."""
+    import tactcad.studies.layout_search as layout_search
+
+    real = layout_search.largest_feasible_force
+    monkeypatch.setattr(layout_search, "largest_feasible_force",
+                        lambda *a, **k: 5.0 * real(*a, **k))
+    monkeypatch.chdir(tmp_path)
+    argv = ["design", "--kr-over-km", "10", "--kobj-range", "0.02", "0.2", "--verify", "none"]
+    code, doc = _run([*argv, "--full-scale-force", "5", "--out", "asked.toml"], capsys)
+    assert code == 2 and doc["error"]["field"] == "--full-scale-force", doc
+    offers = [a["option"] for a in doc["error"]["alternatives"]
+              if a["option"].startswith("--full-scale-force ")]
+    assert offers, doc["error"]
+    offered = float(offers[0].split()[1])
+    assert f"at most {offered:g} N" in doc["error"]["allowed"]
+    code, doc = _run(_with([*argv, "--full-scale-force", "5", "--out", "pasted.toml"],
+                           offers[0]), capsys)
+    assert code == 0, doc
+    written = tomllib.loads((tmp_path / "pasted.toml").read_text(encoding="utf-8"))
+    assert written["requirements"]["full_scale_force_N"] == offered
+
+
 @pytest.mark.slow  # four whole design searches through the command line
 def test_the_refusals_force_pastes_and_is_the_same_for_any_force_asked_above_it(
         tmp_path, capsys, monkeypatch):

@@ -26,21 +26,23 @@ def rig_group(context: CheckContext) -> Iterator[Found]:
         yield "rigs", [CheckResult("test rigs", "project", True,
                                    "not checked: " + no_test_rigs_reason(context.project))]
         return
-    yield "rigs", rig_checks(context.plan, context.project.rigs)
+    yield "rigs", rig_checks(context.plan, context.project.rigs, context.project.scenes,
+                             context.project.scenes_file)
 
 
-def rig_checks(plan, rigs) -> list[CheckResult]:
+def rig_checks(plan, rigs, scenes=None, scenes_file: str = "") -> list[CheckResult]:
     """The evaluation rig's top load, the force gauge and the sample kit against the
     design's rated full-scale force and K_obj range (each result names the rig, the part,
     the load and the rating). Where the kit fails, the gauge is sized for the kit it
-    suggests, so that every suggestion of one report holds when all are pasted."""
+    suggests, so that every suggestion of one report holds when all are pasted; ``scenes``
+    (by name, from ``scenes_file``), given, are the scenes whose sample it names to set."""
     from tactcad.studies.verification import rated_full_scale_force
 
     rated = rated_full_scale_force(plan)
     after = kit_after_suggestion(plan, rigs)
     return [evaluation_load_check(plan, rigs, rated, samples_after=after),
             force_gauge_check(rigs, rated, samples_after=after),
-            sample_kit_check(plan, rigs, rated)]
+            sample_kit_check(plan, rigs, rated, scenes, scenes_file)]
 
 
 def kit_spans(plan, samples) -> bool:
@@ -92,7 +94,8 @@ def gauge_setting(gauge, rigs_file: str) -> str:
             f"stiffness_N_per_mm = {gauge.stiffness_N_per_mm!r}")
 
 
-def sample_kit_check(plan, rigs, rated_N: float | None = None) -> CheckResult:
+def sample_kit_check(plan, rigs, rated_N: float | None = None, scenes=None,
+                     scenes_file: str = "") -> CheckResult:
     """Fails when the rigs' samples (``[sample] stiffness_N_per_mm``, N/mm) do not span the
     design's K_obj range (``requirements.kobj_range_N_per_mm``, stated or derived, N/mm):
     the lab's kit would not test the stiffnesses ``evaluate`` and the design claim.
@@ -102,6 +105,9 @@ def sample_kit_check(plan, rigs, rated_N: float | None = None) -> CheckResult:
         rigs: its :class:`~tactcad.design.rig_plan.RigDesign`.
         rated_N: the design's rated full-scale force (N); given, a failure also names the
             force gauge the suggested samples need where the rig's own misses them.
+        scenes: the project's scenes by name (:class:`~tactcad.design.scene_specs.SceneSpec`);
+            given, a failure names each scene's ``sample_stiffness_N_per_mm`` to set
+            (:func:`scene_samples_setting`). scenes_file: the file they were read from.
 
     Returns:
         The result, naming the samples, the range and, on a failure, samples over it.
@@ -127,7 +133,27 @@ def sample_kit_check(plan, rigs, rated_N: float | None = None) -> CheckResult:
                        f"{rigs_file} [sample] stiffness_N_per_mm, e.g. "
                        f"[{', '.join(f'{k:g}' for k in suggested)}] (the design's own samples, "
                        "those evaluate runs over), and each scene's sample_stiffness_N_per_mm "
-                       f"one of them{gauge}")
+                       f"one of them{scene_samples_setting(scenes, scenes_file, suggested)}"
+                       f"{gauge}")
+
+
+def scene_samples_setting(scenes, scenes_file: str, samples) -> str:
+    """Words for the sample kit's suggestion: each scene that states a
+    ``sample_stiffness_N_per_mm`` the kit ``samples`` (N/mm) does not hold, with the sample
+    of the kit nearest its own (log scale) to paste, as ``scenes.toml
+    [scene.NAME] sample_stiffness_N_per_mm = V`` ("" where no scene states one: a scene
+    that states none shows the kit's first)."""
+    import math
+    from pathlib import Path
+
+    settings = [f"[scene.{name}] sample_stiffness_N_per_mm = "
+                f"{min(samples, key=lambda k: abs(math.log(k / s.sample_stiffness_N_per_mm))):g}"
+                for name, s in (scenes or {}).items()
+                if s.sample_stiffness_N_per_mm is not None
+                and s.sample_stiffness_N_per_mm not in samples]
+    if not settings:
+        return ""
+    return f": set {Path(scenes_file).name or 'scenes.toml'} " + ", ".join(settings)
 
 
 def gauge_for_samples(rigs, rated_N: float, samples) -> str:

@@ -13,6 +13,7 @@ validated project is carried to the last writer.
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 import tomllib
 from pathlib import Path
@@ -79,8 +80,64 @@ def parse_override(text: str, example: str = SET_EXAMPLE) -> tuple[str, Any]:
     except tomllib.TOMLDecodeError as exc:
         raise DesignError(key, raw.strip(), "a TOML value: a number, a quoted string, true or "
                                             "false, or a list such as [4, 5, 6]",
-                          f"--set {text}: {exc}") from None
+                          f"--set {text}: {exc}",
+                          alternatives=quoted_word(key, raw.strip())) from None
     return key, value
+
+
+#: A value typed without TOML's quotes (the shell ate them: ``--set design.name="Zélé"``
+#: reaches tactcad as ``design.name=Zélé``): no quote, bracket, brace, comma or control
+#: character in it.
+_WORD = r"[^\s\"'\[\]{},=#\x00-\x1f\x7f]+"
+_BARE_WORD = re.compile(f"{_WORD}(?: {_WORD})*")
+
+
+def quoted_word(key: str, raw: str) -> list[dict]:
+    """The paste of a ``--set`` whose value is a bare word that is not a TOML value: the
+    word as a TOML string, the whole option quoted against the shell (``--set
+    'design.name="Zele"'``); a name the key's own rule refuses (``design.name``, ``die.name``)
+    cleaned as that rule's refusal cleans it; none for any other value.
+
+    Args:
+        key: the dotted key. raw: its value as typed.
+
+    Returns:
+        The alternatives (``option``, ``words``) to paste, or none.
+    """
+    import shlex
+
+    if not _BARE_WORD.fullmatch(raw):
+        return []
+    word, words = raw, "the value as a TOML string, its quotes kept from the shell"
+    if key in NAME_RULES:
+        allowed, cleaned, how = NAME_RULES[key]()
+        if not allowed(raw):
+            word, words = cleaned(raw), f"{words}: {how}"
+    quoted = '"' + word.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return [{"option": "--set " + shlex.quote(f"{key}={quoted}"), "words": words}]
+
+
+NameRule = tuple[Callable[[str], bool], Callable[[str], str], str]
+
+
+def _design_name_rule() -> NameRule:
+    from tactcad.vocabulary.schema import NAME_PATTERN, suggested_name
+
+    return ((lambda t: re.fullmatch(NAME_PATTERN, t) is not None), suggested_name,
+            "the name with accents dropped and other characters as _")
+
+
+def _die_name_rule() -> NameRule:
+    from tactcad.products.silicon_die.design.die_file import (CLEANED_CELL_NAME_WORDS,
+                                                              is_cell_name, suggested_cell_name)
+
+    return is_cell_name, suggested_cell_name, CLEANED_CELL_NAME_WORDS
+
+
+#: Keys whose value is a name a rule refuses: key -> (the rule, the name it offers instead,
+#: that name in words), each imported when a refusal asks for it.
+NAME_RULES: dict[str, Callable[[], NameRule]] = {"design.name": _design_name_rule,
+                                                 "die.name": _die_name_rule}
 
 
 def parse_overrides(texts: list[str] | None, example: str = SET_EXAMPLE) -> dict[str, Any]:

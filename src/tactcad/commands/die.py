@@ -11,6 +11,7 @@ import io
 import math
 import os
 import shutil
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
@@ -294,11 +295,13 @@ def with_attach(plan, attach):
 
 
 def run(args: argparse.Namespace) -> int:
-    from tactcad.atomic import carry_over, publish_dir, staging_dir, writing_lock
+    from tactcad.atomic import (carry_over, leftover_staging, publish_dir, remove_tree,
+                                staging_dir, warn_left_behind, writing_lock)
     from tactcad.checks.check_result import counts_text
     from tactcad.export.export_owner import written_by_tactcad
     from tactcad.products.silicon_die.design.die_mount import die_mount
 
+    started = time.perf_counter()
     planned = plan_of(die_asked(args))
     plan, room, name = planned.plan, planned.room, planned.plan.name
     mount = die_mount(plan, planned.jaw_stated)
@@ -314,16 +317,21 @@ def run(args: argparse.Namespace) -> int:
     # interrupted run leaves OUT's previous files as they were
     staging = None
     try:
+        # a killed run's staging folder (or an old export not yet removed): an array's rule
+        warn_left_behind([p for old in leftover_staging(out) for p in remove_tree(old)])
         staging = staging_dir(out)
         made = {k: staging / p.relative_to(out) for k, p in files.items()}
         # --fe-check and --fem3d solve outside the store's key (CalculiX, meshes): made afresh
         reusable = not (args.fe_check or getattr(args, "fem3d", False))
         key = die_export_key(planned, mount, getattr(args, "design", None)) if reusable else None
         kept = fetch_die_export(key, staging) if key else None
-        if kept is None:
+        if kept is not None:  # every job of the kept export reused
+            jobs = {"jobs_run": 0, "jobs_reused": kept["jobs_run"] + kept["jobs_reused"]}
+        else:
             for path in made.values():
                 path.parent.mkdir(parents=True, exist_ok=True)
             kept = _build_die_export(args, planned, mount, files, made, staging)
+            jobs = {k: kept[k] for k in ("jobs_run", "jobs_reused")}
             if key:
                 keep_die_export(key, staging, kept)
         record, checks, counts = kept["record"], kept["checks"], kept["counts"]
@@ -341,8 +349,9 @@ def run(args: argparse.Namespace) -> int:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
         held.close()
-    if args.json:
-        print(dumps(record, indent=1))
+    if args.json:  # with the run's seconds and job counts, as an array's export --json
+        print(dumps({**record, "seconds": round(time.perf_counter() - started, 3), **jobs},
+                    indent=1))
     elif getattr(args, "quiet", False):  # `export --quiet` of a die: only what failed
         failed = [c.line() for c in checks if not c.passed]
         if failed:

@@ -3,8 +3,9 @@
 Within :func:`WarningLines.capture` every warning a run issues (tactcad's,
 e.g. the closed form's ``CorrectionRangeWarning``, or a library's) becomes
 one line ``tactcad: warning: ...`` on stderr, once per distinct text per run,
-as it happens; ``--quiet`` silences the lines. With ``--json`` they go into
-the output object as a ``warnings`` list (:func:`json_with_warnings`) instead.
+as it happens; ``--quiet`` silences the lines, but for a run that ends in a refusal,
+which prints the warnings issued before it first (:func:`print_unsaid`). With ``--json``
+they go into the output object as a ``warnings`` list (:func:`json_with_warnings`) instead.
 Deprecation, import and resource warnings are for developers and dropped.
 """
 
@@ -17,6 +18,9 @@ import warnings
 from typing import Iterator
 
 _FOR_DEVELOPERS = (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning)
+
+#: The captures under way (:meth:`WarningLines.capture`), the innermost last.
+_CAPTURES: list["WarningLines"] = []
 
 #: Lines that head a run's stderr (what the run works on), printed before its first
 #: progress or warning line, or when it ends if it printed none; dropped when it ends in
@@ -60,13 +64,21 @@ class WarningLines:
         self.categories: dict[str, type[Warning]] = {}
         self.folded: dict[str, dict[str, float]] = {}  # fold -> its other texts' errors
         self.fold_categories: dict[str, type[Warning]] = {}
+        self.said = 0  # the lines echoed, the first ones
 
     def _add(self, text: str, category: type[Warning] = UserWarning) -> None:
         self.lines.append(text)
         self.categories.setdefault(text, category)
         if self.echo:
+            self.say_unsaid()
+
+    def say_unsaid(self, heads: bool = True) -> None:
+        """Echo the lines not echoed yet, each once (after the run's heads, with ``heads``)."""
+        if heads and self.said < len(self.lines):
             print_heads()
+        for text in self.lines[self.said:]:
             print(f"tactcad: warning: {text}", file=sys.stderr, flush=True)
+        self.said = len(self.lines)
 
     def show(self, message, category, filename, lineno, file=None, line=None) -> None:
         """``warnings.showwarning`` while capturing: record, and echo once."""
@@ -97,10 +109,20 @@ class WarningLines:
             for category in _FOR_DEVELOPERS:
                 warnings.simplefilter("ignore", category)
             warnings.showwarning = self.show
+            _CAPTURES.append(self)
             try:
                 yield self
             finally:
+                _CAPTURES.remove(self)
                 self.close_folds()
+
+
+def print_unsaid() -> None:
+    """Print on stderr, once each, the warnings the run's capture holds and did not echo
+    (``--quiet``): a refusal prints them before itself, as what it followed from (the
+    ``--set`` given twice whose last value is refused)."""
+    if _CAPTURES:  # the refusal stays the run's last lines, without the heads
+        _CAPTURES[-1].say_unsaid(heads=False)
 
 
 def json_with_warnings(text: str, lines: list[str], notices: list[str] = ()) -> str | None:

@@ -45,14 +45,14 @@ import copy
 import math
 import warnings
 from dataclasses import dataclass, field as default_of, replace
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Iterator, Mapping, Sequence
 
 import numpy as np
 
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, MIN_SPACER_MM, MIN_TIP_GAP_MM, Plan,
                                        plan_from_dict)
 from tactcad.design.domain import longest_grip_mm
-from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N
+from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MIN_FULL_SCALE_FORCE_N
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 from tactcad.mechanics.correction import range_warnings_unsaid
 from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, cut_process
@@ -598,10 +598,14 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
 
 #: A refusal's offered force: the search is asked again at forces this factor apart,
 #: down from the best layout's largest force, at most :data:`OFFER_STEPS_DOWN` times,
-#: then the last step is halved :data:`OFFER_HALVINGS` times.
+#: then a decade (:data:`OFFER_DECADE`) at a time down to the domain's least force
+#: (:data:`~tactcad.design.requirements_section.MIN_FULL_SCALE_FORCE_N`), then the
+#: interval between the force that designs and the one refused above it is halved on a
+#: log scale, at most :data:`OFFER_HALVINGS` times, until the grid has no force inside it.
 OFFER_STEP = 0.97
 OFFER_STEPS_DOWN = 6
-OFFER_HALVINGS = 4
+OFFER_DECADE = 0.1
+OFFER_HALVINGS = 16
 
 
 def searched_force(data: Mapping[str, Any], targets: Targets, seen: Attempts, start_N: float,
@@ -634,34 +638,50 @@ def searched_force(data: Mapping[str, Any], targets: Targets, seen: Attempts, st
     return force_frontier(designed_layout, start_N)
 
 
-def force_frontier(designed: Callable[[float], Any], start_N: float
-                   ) -> tuple[float, Any] | None:
+def force_frontier(designed: Callable[[float], Any], start_N: float,
+                   floor_N: float = MIN_FULL_SCALE_FORCE_N) -> tuple[float, Any] | None:
     """The largest force on the 3-significant-digit grid at which ``designed`` answers
     (not None), found from ``start_N`` alone, so the same for any force asked above it:
-    ``start_N`` rounded down, then steps of :data:`OFFER_STEP` down until one designs, then
-    the last step halved on the grid. Every force returned was itself judged.
+    ``start_N`` rounded down, then steps of :data:`OFFER_STEP` down, then decades down
+    (:data:`OFFER_DECADE`) to ``floor_N`` until one designs, then the interval up to the
+    force refused above it bisected on a log scale on the grid (a soft K_obj range's
+    layouts may design only far below the best layout's own largest force). Every force
+    returned was itself judged.
 
     Args:
         designed: force (N) -> what designs there (e.g. its layout), or None.
         start_N: the force to start from (N, > 0).
+        floor_N: the least force tried (N): the domain's least full-scale force.
 
     Returns:
-        (force N, ``designed``'s answer there), or None when none of the
-        :data:`OFFER_STEPS_DOWN` forces tried designs.
+        (force N, ``designed``'s answer there), or None when none of the forces tried,
+        down to ``floor_N``, designs.
     """
+    def tried() -> Iterator[float]:
+        force = round_down(start_N, 3)
+        for _ in range(OFFER_STEPS_DOWN):
+            yield force
+            force = round_down(force * OFFER_STEP, 3)
+        while force >= floor_N:
+            yield force
+            force = round_down(force * OFFER_DECADE, 3)
+
     refused = None
-    force = round_down(start_N, 3)
-    for _ in range(OFFER_STEPS_DOWN):
+    for force in tried():
         got = designed(force)
         if got is not None:
             break
-        refused, force = force, round_down(force * OFFER_STEP, 3)
+        refused = force
     else:
         return None
     best = (force, got)
     for _ in range(OFFER_HALVINGS if refused is not None else 0):
-        mid = round_down(0.5 * (best[0] + refused), 3)
+        # the geometric mean (a decade's interval), else the arithmetic one, which falls
+        # on a grid force inside the interval whenever there is one
+        mid = round_down(math.sqrt(best[0] * refused), 3)
         if mid <= best[0]:
+            mid = round_down(0.5 * (best[0] + refused), 3)
+        if mid <= best[0] or mid >= refused:
             break  # the grid has no force between them
         got = designed(mid)
         if got is not None:

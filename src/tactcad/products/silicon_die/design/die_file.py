@@ -166,7 +166,14 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
         problems.add("die.kobj_range_N_per_mm", [lo, hi], "LO < HI")
     jaw = _jaw(die.jaw, source, problems)
     if not is_cell_name(die.name):
-        problems.add("die.name", die.name, CELL_NAME_WORDS)
+        cleaned = suggested_cell_name(die.name)
+        # to paste as the file writes it; a --set of the key turns it into that option
+        # (DesignErrors.sourced), as design.name's refusal does
+        problems.extend([DesignError("die.name", die.name, f"{CELL_NAME_WORDS}, e.g. {cleaned}",
+                                     "the name ends up in the GDSII cell and the die's file "
+                                     "names", problems.file,
+                                     alternatives=[{"option": f'die.name = "{cleaned}"',
+                                                    "words": CLEANED_CELL_NAME_WORDS}])])
     problems.raise_if_any()
     return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach))
 
@@ -199,6 +206,28 @@ def is_cell_name(text: str) -> bool:
     import re
 
     return re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", text or "") is not None
+
+
+#: What :func:`suggested_cell_name` does to a name, in a refusal's words.
+CLEANED_CELL_NAME_WORDS = ("the name with accents dropped, other characters as _ and a letter "
+                           "first")
+
+
+def suggested_cell_name(text: str) -> str:
+    """A die name (:data:`CELL_NAME_WORDS`) close to ``text`` for a user to paste: as a
+    design's name is cleaned (:func:`tactcad.vocabulary.schema.suggested_name`: accents
+    dropped, other characters as ``_``), its ``.`` and ``-`` as ``_`` too, ``die_`` before
+    a name that starts with no letter, cut to 32 characters; the default die name when
+    nothing of ``text`` is left."""
+    import re
+
+    from tactcad.vocabulary.schema import suggested_name
+
+    name = re.sub(r"[^A-Za-z0-9_]+", "_", suggested_name(str(text), fallback=""))
+    if name and not name[0].isalpha():
+        name = "die_" + name
+    name = name[:32].rstrip("_")
+    return name if is_cell_name(name) else DEFAULT_DIE_NAME
 
 
 def _jaw(value: str, source: Path, problems: Problems) -> str:
