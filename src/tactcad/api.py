@@ -1188,7 +1188,8 @@ class DieProject:
         the jaw's room, the jaw as mounted)."""
         from tactcad.commands.die import _die_args, die_asked, plan_of
 
-        return plan_of(die_asked(_die_args(self.source, self._args(), Path("."))))
+        with _working_folder_store():  # the plan's own solves (its tissue coupling) kept too
+            return plan_of(die_asked(_die_args(self.source, self._args(), Path("."))))
 
     @property
     def plan(self):
@@ -1202,11 +1203,15 @@ class DieProject:
         return self.plan.name
 
     def _report(self, command: str, **options: Any) -> dict:
+        """The die view ``command``'s record. Its solves are kept in and read from the
+        working folder's result store, as the command's are (``--cache`` left out), unless
+        the caller opened a store of its own (:func:`tactcad.store.keeping_results`)."""
         from tactcad.products import product_named
 
         view = product_named("silicon-die").view(command)
         assert view is not None, command  # the die's registry entry names each one used here
-        return view(self.source, self._args(**options))[0]
+        with _working_folder_store():
+            return view(self.source, self._args(**options))[0]
 
     @keyword_errors
     def stiffness(self, model: str = "closed-form") -> dict:
@@ -1374,6 +1379,19 @@ class DieProject:
             code = export_die(self.source, self._args(out=str(out)))
         report(f"exported die {self.name} to {out}")
         return code
+
+
+def _working_folder_store():
+    """A block keeping results in the working folder's store, as a command run without
+    ``--cache`` does; the caller's own block where one is open
+    (:func:`tactcad.store.keeping_results`)."""
+    import contextlib
+
+    from tactcad.store import active_store, keeping_results
+
+    if active_store() is not None:
+        return contextlib.nullcontext()
+    return keeping_results(_store(True))
 
 
 def _store(cache: str | Path | None | bool):

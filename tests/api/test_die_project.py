@@ -118,3 +118,26 @@ def test_a_die_projects_budget_is_the_json_the_command_prints_unreadable_terms_i
     terms = printed["kobj_budget"]["terms_rel"]
     assert any(v is None for values in terms.values() for v in values)  # the case at hand
     assert json.loads(text)["kobj_budget"]["terms_rel"] == terms
+
+
+def test_a_die_projects_solves_are_kept_in_the_working_folders_store(tmp_path, monkeypatch):
+    """As the command's: a die report's solves (here the tissue coupling's punch solves of
+    its budget) go to the working folder's store, for the next call and the next command;
+    a caller's own store block is the one used."""
+    import tactcad
+    from tactcad.store import STORE_FOLDER, Store, keeping_results
+
+    import tactcad.store
+    from tactcad.in_use.tissue_coupling import _normalised_compliance
+
+    monkeypatch.chdir(tmp_path)
+    # the working folder's store, as a command's default (the suite points it elsewhere)
+    monkeypatch.setattr(tactcad.store, "DEFAULT_STORE", tmp_path / STORE_FOLDER)
+    _normalised_compliance.cache_clear()  # this process's memory of the solves
+    with keeping_results(Store(None)):  # the caller's choice: keep nothing
+        tactcad.load(EXAMPLE).budget()
+    assert not (tmp_path / STORE_FOLDER).exists()
+    _normalised_compliance.cache_clear()
+    first = tactcad.load(EXAMPLE).budget()
+    kept = [p for p in (tmp_path / STORE_FOLDER).rglob("*") if p.is_file()]
+    assert kept and tactcad.load(EXAMPLE).budget() == first
