@@ -40,7 +40,10 @@ def test_bad_options_are_refused_in_one_line(tmp_path):
     for argv, words in ((["--modes", "0"], "--modes"), (["--model", "beam"], "--model"),
                         (["--element", "99"], "element"),
                         (["--vtu", str(tmp_path)], "--model fem2d or fem3d"),
-                        (["--tip-mass-mg", "-3"], "--tip-mass-mg")):
+                        (["--tip-mass-mg", "-3"], "--tip-mass-mg"),
+                        # not finite: the refusal still gives the range
+                        (["--tip-mass-mg", "nan"], "0 ... 10000 (mg)"),
+                        (["--tip-mass-mg", "1e400"], "0 ... 10000 (mg)")):
         done = run_cli("modal", *argv)
         assert done.returncode == 2, argv
         assert words in done.stderr and "Traceback" not in done.stderr

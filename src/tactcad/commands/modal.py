@@ -8,9 +8,10 @@ from pathlib import Path
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
-from tactcad.commands.options import check_element_option, count, keep_option_defaults
+from tactcad.commands.options import check_element_option, count, keep_option_defaults, number
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
+from tactcad.studies.project_reports import MAX_TIP_MASS_MG
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -30,7 +31,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="leave out the gauge installation's mass (gauge, adhesive, lead, "
                         "terminals; counted by default at their places); the stiffness stays "
                         "the element's with its bonded gauge")
-    p.add_argument("--tip-mass-mg", type=float, default=0.0, metavar="MG",
+    p.add_argument("--tip-mass-mg", type=number(0.0, MAX_TIP_MASS_MG, "mg"), default=0.0,
+                   metavar="MG",
                    help="a further mass at the contact centre (mg; a tip cover, a pad), "
                         "0 ... 10000 (default 0)")
     p.add_argument("--vtu", metavar="DIR", default=None,
@@ -48,15 +50,12 @@ def run_modal(args: argparse.Namespace) -> int:
     if shown is not None:
         return shown
     from tactcad.mechanics.fem.fem_modal import write_modes_vtu
-    from tactcad.studies.project_reports import MAX_TIP_MASS_MG, modes_record
+    from tactcad.studies.project_reports import modes_record
 
     meshed = MODAL_LEVELS[args.model].meshed
     if args.vtu is not None and not meshed:
         raise TactcadError(f"--vtu {args.vtu}: allowed with --model fem2d or fem3d only "
                            f"(got --model {args.model})")
-    if not 0.0 <= args.tip_mass_mg <= MAX_TIP_MASS_MG or args.tip_mass_mg != args.tip_mass_mg:
-        raise TactcadError(f"--tip-mass-mg {args.tip_mass_mg:g}: allowed 0 ... "
-                           f"{MAX_TIP_MASS_MG:g} mg")
     plan = plan_from_args(args)
     report = progress_from_args(args)
     if args.element is not None:
