@@ -201,9 +201,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "states it as requirements.footprint_mm so verify and check keep it")
     p.add_argument("--out", metavar="NEW.toml|DIR", required=True,
                    help="design file to write (.toml), or a sensor project folder DIR to make "
-                        "as `tactcad new` does (the design DIR/<DIR>.toml with its rigs, "
-                        "scenes, README, .gitignore and CI workflow); any writable folder but "
-                        "system folders")
+                        "as `tactcad new` does (the design DIR/<name>.toml, the name DIR's "
+                        "own with any character a design name may not hold made '_', with "
+                        "its rigs, scenes, README, .gitignore and CI workflow); any writable "
+                        "folder but system folders")
     p.add_argument("--force", action="store_true",
                    help="overwrite an existing file (default: refuse); for a project folder, "
                         "the files tactcad wrote for the project it held (its design, README, "
