@@ -228,6 +228,11 @@ def keyword_errors(method: Method) -> Method:
         try:
             with notes.capture():
                 result = answered(*args, **kwargs)
+        except BaseException:
+            # a refusal after warnings: they are said before it, as a command says them
+            for text in notes.lines:
+                warnings.warn(plain_warning(text, notes.categories[text]), stacklevel=2)
+            raise
         finally:
             _API_CALL.reset(running)
         result, left = with_warnings(result, notes.lines)

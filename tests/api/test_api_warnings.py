@@ -79,3 +79,25 @@ def test_a_dataclass_result_takes_the_warnings_in_its_own_field():
     plain_record, left = with_warnings({"k": 1}, ["x"])
     assert plain_record == {"k": 1, "warnings": ["x"]} and left == []
     assert with_warnings(3.0, ["x"]) == (3.0, ["x"])
+
+
+def test_a_refusal_after_warnings_says_them_first_from_the_callers_line():
+    """As a command prints the warnings issued before its refusal: an API call that warned
+    and then refused says each warning once, at the caller's line, and raises the refusal
+    by its keyword."""
+    from tactcad.api import keyword_errors
+    from tactcad.errors import DesignError
+
+    @keyword_errors
+    def judged(force_N: float = 1.0) -> dict:
+        warnings.warn(GaugeStrainRangeWarning("beyond the fit: error 2.7 %"))
+        warnings.warn(GaugeStrainRangeWarning("beyond the fit: error 2.7 %"))
+        raise DesignError("--force-N", force_N, "0 < value <= 10 (N)")
+
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        with pytest.raises(DesignError) as refused:
+            judged(force_N=50.0)
+    assert refused.value.field == "force_N"
+    assert [str(w.message) for w in said] == ["beyond the fit: error 2.7 %"]
+    assert said[0].filename == __file__
