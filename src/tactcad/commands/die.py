@@ -385,7 +385,7 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
     plan, room, name, out = planned.plan, planned.room, planned.plan.name, Path(args.out)
     run = DieRun(plan, mount, room.label, staging,
                  {k: p.relative_to(staging).as_posix() for k, p in made.items()},
-                 active_store() or Store(None))
+                 active_store() or Store(None), log=progress_from_args(args))
     # each file a job of the store, as an array's: a change rebuilds only what it shapes
     jobs = die_jobs(run)
     records, jobs_run = run_jobs(run, jobs, run.store)

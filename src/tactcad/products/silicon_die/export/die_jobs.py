@@ -111,7 +111,12 @@ def die_jobs(run: DieRun) -> list[Job]:
     masks_key = content_key("die-gds", whole, names["masks"])
 
     def job(name: str, key: str, make: Callable[[], list[dict]], after: tuple = ()) -> Job:
-        return Job(name, key, lambda _run: make(), after=after)
+        def logged(_run) -> list[dict]:
+            records = make()
+            run.log("  wrote " + ", ".join(r["path"] for r in records))
+            return records
+
+        return Job(name, key, logged, after=after)
 
     return [
         job("gds:masks", masks_key, lambda: _masks(run)),
