@@ -30,8 +30,9 @@ from typing import Protocol, Sequence
 
 import numpy as np
 
-from tactcad.geometry.profile import Arc, CombSheetOutline, Line, comb_sheet_profile
-from tactcad.mechanics.fem.fem_mesh import WEB_DIVISIONS, _read_mesh, gmsh_session
+from tactcad.geometry.profile import Arc, CombSheetOutline, comb_sheet_profile
+from tactcad.mechanics.fem.fem_mesh import (WEB_DIVISIONS, _read_mesh, gmsh_session,
+                                            occ_outline_curves)
 
 #: Growth of the element size away from a layer (mm per mm), as the element's mesh.
 GROWTH = 0.5
@@ -178,23 +179,7 @@ def mesh_comb_sheet(sheet: CombSheetBody, layers: Sequence[LayerBox],
     t0 = time.perf_counter()
     with gmsh_session("tactcad_comb_sheet") as gm:
         occ = gm.model.occ
-        cache: dict[tuple[float, float], int] = {}
-
-        def pt(p):
-            key = (round(p[0], 12), round(p[1], 12))
-            if key not in cache:
-                cache[key] = occ.addPoint(p[0], p[1], 0.0)
-            return cache[key]
-
-        curves = []
-        for s in prof.outer:
-            if isinstance(s, Arc):
-                m = s.midpoint
-                curves.append(occ.addCircleArc(pt(s.start), occ.addPoint(m[0], m[1], 0.0),
-                                               pt(s.end), center=False))
-            else:
-                assert isinstance(s, Line)
-                curves.append(occ.addLine(pt(s.start), pt(s.end)))
+        curves, _ = occ_outline_curves(occ, prof.outer)
         loops = [occ.addCurveLoop(curves)]
         loops += [occ.addCurveLoop([occ.addCircle(c.centre[0], c.centre[1], 0.0, c.radius)])
                   for c in holes]

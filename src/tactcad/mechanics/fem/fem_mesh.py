@@ -368,7 +368,26 @@ def _build_surface(gm, region: FemRegion, split_points: Sequence[tuple[float, fl
     """OCC plane surface of the outline; lines containing a split point are
     split there (gives a mesh vertex, e.g. the gauge point). Returns
     (surface tag, {curve tag: segment})."""
-    occ = gm.model.occ
+    curves, curve_seg = occ_outline_curves(gm.model.occ, region.outline, split_points)
+    loop = gm.model.occ.addCurveLoop(curves)
+    surf = gm.model.occ.addPlaneSurface([loop])
+    return surf, curve_seg
+
+
+def occ_outline_curves(occ, outline: Sequence[Segment],
+                       split_points: Sequence[tuple[float, float]] = ()
+                       ) -> tuple[list[int], dict[int, Segment]]:
+    """The OCC curves of a closed outline of lines and arcs (mm), in its order, each
+    corner one shared point; a line holding a split point is split there (a mesh vertex,
+    e.g. a gauge's grid end).
+
+    Args:
+        occ: gmsh's ``model.occ``. outline: the segments, closed, in order.
+        split_points: points on lines of the outline to split them at.
+
+    Returns:
+        (the curve tags in order, {curve tag: the segment it draws}).
+    """
     cache: dict[tuple[float, float], int] = {}
 
     def pt(p):
@@ -379,7 +398,7 @@ def _build_surface(gm, region: FemRegion, split_points: Sequence[tuple[float, fl
 
     curves: list[int] = []
     curve_seg: dict[int, Segment] = {}
-    for s in region.outline:
+    for s in outline:
         if isinstance(s, Arc):
             m = s.midpoint
             tag = occ.addCircleArc(pt(s.start), occ.addPoint(m[0], m[1], 0.0), pt(s.end),
@@ -405,9 +424,7 @@ def _build_surface(gm, region: FemRegion, split_points: Sequence[tuple[float, fl
             tag = occ.addLine(pt(ln.start), pt(ln.end))
             curves.append(tag)
             curve_seg[tag] = ln
-    loop = occ.addCurveLoop(curves)
-    surf = occ.addPlaneSurface([loop])
-    return surf, curve_seg
+    return curves, curve_seg
 
 
 def _size_fields(gm, sizes: MeshSizes, neck: tuple[float, float],
