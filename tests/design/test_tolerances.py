@@ -167,3 +167,21 @@ def test_the_element_drawing_says_where_the_gauge_goes():
     assert "grid 1.2 x 1" in note and "17 from the back face" in note
     base = plan_from_dict(default_design_data())
     assert part_hash(plan, spec) != part_hash(base, array_parts(base)["element_a4mm"])
+
+
+def test_contributions_are_kept_by_their_parts_and_each_caller_gets_its_own():
+    """A K budget's contributions are kept per process by the plan's parts, material,
+    tolerances and correction: the same inputs the same numbers (each caller its own
+    dict), a wider tolerance its own."""
+    from dataclasses import replace
+
+    plan = plan_from_dict(default_design_data())
+    tol = Tolerances.of_plan(plan)
+    part = plan.element(4).geometry.part_name
+    first = contributions(plan, tol)
+    first[part]["web_thickness_mm"] = -1.0
+    again = contributions(plan, tol)
+    assert again[part]["web_thickness_mm"] > 0
+    wider = contributions(plan, replace(tol, web_mm=2 * tol.web_mm))
+    assert wider[part]["web_thickness_mm"] > again[part]["web_thickness_mm"]
+    assert wider[part]["youngs_modulus_rel"] == again[part]["youngs_modulus_rel"]

@@ -449,6 +449,7 @@ def test_kept_web_solves_give_a_fresh_solves_web_and_read_each_closed_form_once(
         return counted(g, m)
 
     monkeypatch.setattr(closed_form, "corrected_element_k", counting)
+    monkeypatch.setattr(comb_design, "_WEB_K_GRIDS", type(comb_design._WEB_K_GRIDS)())
     with comb_design.web_solves_kept():
         kept = [comb_design.solve_web(geometry, material, k, 0.02, 0.6) for k in targets]
         first_reads = len(reads)
@@ -540,6 +541,7 @@ def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):
         return real(tables)
 
     monkeypatch.setattr(comb_design, "plan_from_dict", counted)
+    monkeypatch.setattr(comb_design, "_TARGET_FREE_PLANS", type(comb_design._TARGET_FREE_PLANS)())
     with comb_design.web_solves_kept():
         first, again = starting_plan(d), starting_plan(d)
         errors = []
@@ -577,3 +579,87 @@ def test_a_solved_web_is_the_grid_web_whose_half_step_cell_holds_the_root(k_targ
     assert web == round(root / WEB_STEP_MM) * WEB_STEP_MM
     assert solved_web(g, material, k(1.0) * 1.01, 0.02, 1.0) is None
     assert solved_web(g, material, k(0.02) * 0.99, 0.02, 1.0) is None
+
+
+def test_a_web_grid_is_kept_by_its_element_material_bracket_and_correction(monkeypatch):
+    """The K over a web bracket a web search reads is kept per process: the same element,
+    material, bracket and correction read it again; a change of any one works it out anew
+    (and a target is solved on the grid it belongs to)."""
+    from collections import OrderedDict
+
+    import tactcad.mechanics.correction as correction
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies import comb_design
+
+    monkeypatch.setattr(comb_design, "_WEB_K_GRIDS", OrderedDict())
+    plan = plan_from_dict(BASE)
+    g, m = plan.element(1).geometry, plan.material
+    grid = comb_design.web_k_grid(g, m, 0.02, 0.6)
+    assert comb_design.web_k_grid(g, m, 0.02, 0.6) is grid
+    others = [comb_design.web_k_grid(dataclasses.replace(g, arm_length_mm=3.0), m, 0.02, 0.6),
+              comb_design.web_k_grid(g, dataclasses.replace(m, youngs_modulus_MPa=2e5),
+                                     0.02, 0.6),
+              comb_design.web_k_grid(g, m, 0.03, 0.6), comb_design.web_k_grid(g, m, 0.02, 0.5)]
+    assert all(o is not grid for o in others)
+    assert others[0].k_lo != grid.k_lo and others[1].k_lo != grid.k_lo  # another arm, E
+    assert (others[2].first, others[3].last) == (30, 500)
+    k = estimate_closed_form(g, m).stiffness_N_per_mm
+    assert comb_design.solved_web(g, m, k, 0.02, 0.6) == pytest.approx(g.web_thickness_mm)
+    assert comb_design.solved_web(dataclasses.replace(g, arm_length_mm=3.0), m, k, 0.02,
+                                  0.6) != pytest.approx(g.web_thickness_mm)  # its own grid
+    refit = dataclasses.replace(correction.load_correction(), source="a refit")
+    monkeypatch.setattr(correction, "load_correction", lambda path=None: refit)
+    again = comb_design.web_k_grid(g, m, 0.02, 0.6)
+    assert again is not grid and again.correction is refit
+
+
+def test_a_target_free_plan_is_kept_across_targets_and_planned_anew_for_other_tables(
+        monkeypatch):
+    """A sheet's starting plan is kept for tables that differ in the requirements the
+    targets write alone: its elements are a fresh plan's; another sheet is planned anew,
+    and tables whose requirements are refused on their own are planned as they are."""
+    from collections import OrderedDict
+
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.studies import comb_design
+    from tactcad.studies.comb_design import comb_tables, searched_base, target_free_plan
+
+    monkeypatch.setattr(comb_design, "_TARGET_FREE_PLANS", OrderedDict())
+    base, room = searched_base(BASE, 4), jaw_room("10")
+
+    def tables(targets, sheet=1.0):
+        return comb_tables(base, sheet, 4, room, targets, TI)[0]
+
+    a = tables(Targets(10.0, (0.5, 5.0), 0.05))
+    b = tables(Targets(4.0, (0.1, 30.0), 2.0))
+    kept = target_free_plan(a)
+    assert target_free_plan(b) is kept
+    assert [s.geometry for s in kept.slots] == [s.geometry for s in plan_from_dict(b).slots]
+    other = target_free_plan(tables(Targets(10.0, (0.5, 5.0), 0.05), sheet=0.8))
+    assert other is not kept and other.sheet_thickness_mm == 0.8
+    inverted = {**b, "requirements": {**b["requirements"], "kobj_range_N_per_mm": [5.0, 0.5]}}
+    with pytest.raises(DesignError) as fresh:
+        plan_from_dict(inverted)
+    with pytest.raises(DesignError) as planned:
+        target_free_plan(inverted)
+    assert [e.field for e in planned.value.errors] == [e.field for e in fresh.value.errors]
+    assert len(comb_design._TARGET_FREE_PLANS) == 2  # the refused tables are not kept
+
+
+def test_a_pair_too_tall_refused_by_its_height_leaves_the_same_fasteners_and_plan():
+    """Where the reasons of the screws and dowels tried are not read (the atlas), a pair
+    too tall for the jaw is refused by its height alone: the comb takes the same pair and
+    its plan's figures are the full judgement's."""
+    from tactcad.studies.comb_design import comb_candidates, comb_of_candidates
+    from tactcad.studies.design_atlas import plan_figures
+
+    targets, room = Targets(10.0, (0.5, 5.0), 0.0620327), jaw_room("10")
+    _, tried = comb_candidates(targets, room, 2, BASE, grade=TI, envelope_of=array_envelope_mm)
+    full = comb_of_candidates(tried, targets, room, 2, envelope_of=array_envelope_mm)
+    fast = comb_of_candidates(tried, targets, room, 2, envelope_of=array_envelope_mm,
+                              fastener_reasons=False)
+    tall = [f for f in fast.fasteners if f.failures and "height" in f.failures[0]]
+    assert tall and [f.label for f in fast.fasteners] == [f.label for f in full.fasteners]
+    assert fast.data["comb"] == full.data["comb"]
+    assert plan_figures(fast.plan, array_envelope_mm) == plan_figures(full.plan,
+                                                                      array_envelope_mm)

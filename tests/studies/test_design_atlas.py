@@ -363,3 +363,30 @@ def test_each_materials_command_at_a_point_writes_its_own_file():
     assert all(o.endswith("_6.toml") and o.replace("_", "").replace(".", "").isalnum()
                for o in outs.values())
     assert design_command("5", DIE, SILICON, point).endswith("--out atlas_mems_die_6.toml")
+
+
+@pytest.mark.slow  # twelve comb searches, half of them weighing every candidate
+def test_comb_records_are_the_same_whether_pairs_short_by_strength_wait_or_not(monkeypatch):
+    """Setting aside, with its webs alone, a candidate whose yield or fatigue limit already
+    lacks the force margin (weighed only when none has the margin, and then only where it
+    can change the record) changes no record: feasible points keep their figures, refused
+    ones their limit, words and option (a force no comb carries, stops that fit at no
+    sheet, grades either side of their frontier)."""
+    from tactcad.studies import comb_design
+
+    atlas = jaw_atlas("10", [(COMB, "6061-T6"), (COMB, "Ti-6Al-4V-annealed")])
+    points = [{"point": 3, "kr_over_km": 15.7126, "kobj_lo_N_per_mm": 0.0183033,
+               "kobj_hi_N_per_mm": 0.551098, "full_scale_force_N": 3.77821, "columns": 4},
+              {"point": 4, "kr_over_km": 12.1472, "kobj_lo_N_per_mm": 0.395847,
+               "kobj_hi_N_per_mm": 4.17276, "full_scale_force_N": 0.998227, "columns": 3},
+              {"point": 7, "kr_over_km": 28.6453, "kobj_lo_N_per_mm": 0.385629,
+               "kobj_hi_N_per_mm": 0.934451, "full_scale_force_N": 0.0934922, "columns": 2}]
+    set_aside = []
+    real = comb_design.short_by_strength
+    monkeypatch.setattr(comb_design, "short_by_strength",
+                        lambda w: set_aside.append(real(w)) or set_aside[-1])
+    waiting = evaluate_batch(atlas, points)
+    monkeypatch.setattr(comb_design, "short_by_strength", lambda w: None)
+    weighed = evaluate_batch(atlas, points)
+    assert any(set_aside) and {r["binding_limit"] for r in waiting} == {"", "stop", "force"}
+    assert json.dumps(waiting, sort_keys=True) == json.dumps(weighed, sort_keys=True)

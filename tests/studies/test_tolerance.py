@@ -195,3 +195,32 @@ def test_a_chunks_samples_are_its_own_draw_to_the_bit(plan, overrides):
                          "sheet_scale"):
                 want, got = np.asarray(getattr(drawn, name)), np.asarray(getattr(samples, name))
                 assert got.shape == want.shape and got.tobytes() == want.tobytes(), name
+
+
+def test_an_element_band_report_is_kept_by_its_inputs_and_each_caller_gets_its_own(plan):
+    """The K band's Monte Carlo is kept per process by everything it reads: the same plan
+    elements, samples, seed, tolerances and correction give the same report without
+    drawing again, each caller its own copy; a change of any one draws anew."""
+    from dataclasses import replace
+
+    from tactcad.studies import tolerance_montecarlo as mc
+
+    first = mc.element_band_report(plan, 4000, seed=9)
+    draws = []
+    real = mc.run_chunk
+    try:
+        mc.run_chunk = lambda spec: draws.append(spec) or real(spec)
+        again = mc.element_band_report(plan, 4000, seed=9)
+        assert not draws and again.elements == first.elements
+        again.elements[0]["K_mean_N_per_mm"] = -1.0  # a caller's own copy
+        assert mc.element_band_report(plan, 4000, seed=9).elements == first.elements
+        tol = Tolerances.of_plan(plan)
+        others = [mc.element_band_report(plan, 4001, seed=9),
+                  mc.element_band_report(plan, 4000, seed=10),
+                  mc.element_band_report(plan, 4000, seed=9,
+                                         tolerances=replace(tol, web_mm=2 * tol.web_mm)),
+                  mc.element_band_report(plan, 4000, seed=9, correction=replace(
+                      load_correction(), coefficients=(0.0, 0.0, 0.0)))]
+        assert len(draws) > 4 and all(o.elements != first.elements for o in others)
+    finally:
+        mc.run_chunk = real

@@ -256,6 +256,11 @@ def force_limits(web_mm, notch_radius_mm, arm_length_mm, sheet_mm, material: Mat
 
 def _positive(name: str, value) -> np.ndarray:
     arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:  # one value (a search's every element): checked without reductions
+        x = float(arr)
+        if not (math.isfinite(x) and x > 0):
+            raise ValueError(f"{name} must be finite and > 0; got {np.ravel(arr)[:3].tolist()}")
+        return arr
     if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
         raise ValueError(f"{name} must be finite and > 0; got {np.ravel(arr)[:3].tolist()}")
     return arr

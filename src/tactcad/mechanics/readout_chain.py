@@ -629,6 +629,24 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     return out
 
 
+def unmeshed_force_resolution_N(plan: Plan, model: str = "closed-form") -> dict[str, float]:
+    """:func:`element_force_resolution_N`'s ``"dF"`` per distinct part at a level that meshes
+    nothing (closed form, beam): the same numbers, from each part's unsigned grid strain
+    kept per process (:func:`tactcad.mechanics.element_strength.unmeshed_grid_strain_per_N`;
+    the strain's sign drops out of |S|).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    from tactcad.mechanics.element_strength import unmeshed_grid_strain_per_N
+
+    chain = readout_chain(plan)
+    noise = noise_budget_V(chain)["reading"]
+    return {name: force_resolution_N(chain, unmeshed_grid_strain_per_N(g, plan.material, chain,
+                                                                        model), noise)
+            for name, g in plan.distinct_elements.items()}
+
+
 def readout_report(plan: Plan, requirements, model: str = "closed-form",
                    progress: Callable[[str], None] | None = None,
                    stiffness: dict[str, float] | None = None) -> ReadoutReport:

@@ -109,11 +109,12 @@ def best_unit_resolution_rel(units: Sequence[ReadUnit], k_obj, full_scale_force_
                              ) -> np.ndarray:
     """The relative K_obj resolution of an array at each K_obj (array, N/mm): its best
     unit's (:func:`unit_resolution` with each element's own force resolution); inf where
-    there is no unit.
+    there is no unit. Units read alike (a comb's columns) are worked out once: the least
+    of equal arrays is either.
     """
     k_obj = np.atleast_1d(np.asarray(k_obj, float))
     best = np.full(k_obj.shape, np.inf)
-    for u in units:
+    for u in dict.fromkeys(units):  # equal units once, in their order
         r = unit_resolution(u.k_m, u.k_r, k_obj, full_scale_force_N,
                             u.force_resolution_measuring_N,
                             force_resolution_reference_N=u.force_resolution_reference_N)

@@ -39,7 +39,10 @@ full-scale force any sheet carries, as an option to paste. Units: mm, N, N/mm.
 
 from __future__ import annotations
 
+import functools
 import math
+import threading
+from collections import OrderedDict
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, replace
@@ -264,6 +267,9 @@ def solved_web(geometry, material, k_target: float, lo: float, hi: float) -> flo
     between grid webs whose K falls short of the target, all worked out in one vectorised
     call (:func:`tactcad.mechanics.closed_form_batch.corrected_stiffness_batch`, K to
     within 1e-14 of :func:`closed_form_k`'s) rather than a root finder's dozen scalar ones.
+    The K of the bracket's ends and half-steps does not depend on the target, so it is
+    worked out once per element, material and bracket in a process (:func:`web_k_grid`):
+    every point of an atlas and every K_m scale solve the same elements' webs again.
 
     Args:
         geometry: the element (mm; its web is the one sought). material: its material.
@@ -274,20 +280,98 @@ def solved_web(geometry, material, k_target: float, lo: float, hi: float) -> flo
     """
     import numpy as np
 
-    from tactcad.mechanics.closed_form_batch import corrected_stiffness_batch
+    grid = web_k_grid(geometry, material, lo, hi)
+    if (grid.k_lo - k_target) * (grid.k_hi - k_target) > 0:
+        return None
+    k = grid.half_steps()
+    return (grid.first + int(np.count_nonzero(k < k_target))) * WEB_STEP_MM
+
+
+@dataclass
+class WebKGrid:
+    """An element's closed-form K over a web bracket (:func:`web_k_grid`), kept per
+    process.
+
+    Attributes:
+        geometry, material, lo, hi: the element (mm), its material and the bracket (mm).
+        correction: the fitted correction the K are worked out with.
+        k_lo, k_hi: K (N/mm) at the bracket's ends (:func:`closed_form_k`).
+        first, last: the bracket's ends in :data:`WEB_STEP_MM` steps.
+    """
+
+    geometry: Any
+    material: Any
+    lo: float
+    hi: float
+    correction: Any
+    k_lo: float
+    k_hi: float
+    first: int
+    last: int
+    _k_half_steps: Any = None
+
+    def half_steps(self):
+        """K (N/mm, a read-only array) at every half-step between grid webs of the bracket,
+        worked out on the first call (a bracket whose ends do not straddle a target needs
+        none): one call of
+        :func:`tactcad.mechanics.closed_form_batch.corrected_stiffness_batch`."""
+        import numpy as np
+
+        from tactcad.mechanics.closed_form_batch import corrected_stiffness_batch
+
+        if self._k_half_steps is None:
+            g, m = self.geometry, self.material
+            steps = (np.arange(self.first, self.last) + 0.5) * WEB_STEP_MM
+            k = np.atleast_1d(corrected_stiffness_batch(
+                steps, g.notch_radius_mm, g.arm_length_mm, m.youngs_modulus_MPa, g,
+                m.poisson_ratio, self.correction))
+            k.setflags(write=False)
+            self._k_half_steps = k
+        return self._k_half_steps
+
+
+#: Most :class:`WebKGrid` kept in a process (least recently used dropped first): an atlas
+#: of one jaw meets a few hundred (sheets x column counts x grades), each at most a few
+#: thousand floats.
+WEB_K_GRIDS_KEPT = 1024
+_WEB_K_GRIDS: "OrderedDict[tuple, WebKGrid]" = OrderedDict()
+_WEB_K_GRIDS_LOCK = threading.Lock()  # a Dask worker may run tasks on several threads
+
+
+def web_k_grid(geometry, material, lo: float, hi: float) -> WebKGrid:
+    """The closed form's K of ``geometry`` in ``material`` at the web bracket's ends
+    [``lo``, ``hi``] (mm) and, on demand, at every half-step between :data:`WEB_STEP_MM`
+    grid webs in it: what :func:`solved_web` reads, the same numbers for any K target. A
+    pure function of the element (every field but its web), the material, the bracket and
+    the fitted correction (:func:`tactcad.mechanics.correction.load_correction`, read
+    again when its file changes), so kept per process by those (:data:`WEB_K_GRIDS_KEPT`
+    at most): every point of an atlas and every K_m scale of a search solve the same few
+    hundred elements' webs.
+
+    Args:
+        geometry: the element (mm). material: its material. lo, hi: the bracket (mm).
+
+    Returns:
+        :class:`WebKGrid`.
+    """
     from tactcad.mechanics.correction import load_correction
 
-    def k_minus(t: float) -> float:
-        return closed_form_k(replace(geometry, web_thickness_mm=t), material) - k_target
-
-    if k_minus(lo) * k_minus(hi) > 0:
-        return None
-    first, last = round(lo / WEB_STEP_MM), round(hi / WEB_STEP_MM)
-    half_steps = (np.arange(first, last) + 0.5) * WEB_STEP_MM
-    k = corrected_stiffness_batch(half_steps, geometry.notch_radius_mm,
-                                  geometry.arm_length_mm, material.youngs_modulus_MPa,
-                                  geometry, material.poisson_ratio, load_correction())
-    return (first + int(np.count_nonzero(np.atleast_1d(k) < k_target))) * WEB_STEP_MM
+    correction = load_correction()
+    key = (geometry, material, lo, hi)
+    with _WEB_K_GRIDS_LOCK:
+        kept = _WEB_K_GRIDS.get(key)
+        if kept is not None and kept.correction is correction:
+            _WEB_K_GRIDS.move_to_end(key)
+            return kept
+    grid = WebKGrid(geometry, material, lo, hi, correction,
+                    closed_form_k(replace(geometry, web_thickness_mm=lo), material),
+                    closed_form_k(replace(geometry, web_thickness_mm=hi), material),
+                    round(lo / WEB_STEP_MM), round(hi / WEB_STEP_MM))
+    with _WEB_K_GRIDS_LOCK:
+        _WEB_K_GRIDS[key] = grid
+        while len(_WEB_K_GRIDS) > WEB_K_GRIDS_KEPT:
+            _WEB_K_GRIDS.popitem(last=False)
+    return grid
 
 
 def closed_form_k(geometry, material) -> float:
@@ -428,6 +512,30 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
     Raises:
         DesignErrors: the plan with its webs is refused.
     """
+    start, webs, binding = solved_webs(d, targets, km_scale)
+    if binding:
+        return d, None, binding
+    d = webbed_tables(d, webs, start.columns)
+    return d, plan_from_dict(d), []
+
+
+def solved_webs(d: dict, targets: Targets, km_scale: float = 1.0
+                ) -> tuple[Any, tuple[float, float] | None, list[str]]:
+    """:func:`with_webs`' web solves, before the tables take them: the reference's web for
+    K_r and the measuring element's for K_m (mm), each on the sheet's starting plan
+    (:func:`starting_plan`).
+
+    Args:
+        d: a sheet's comb tables at their starting webs (:func:`sheet_tables`).
+        targets: the targets. km_scale: K_m over eq. 2's centre.
+
+    Returns:
+        (the starting plan, (reference web, measuring web) or None, the binding limits
+        when a web is out of reach or thinner than the process cuts).
+
+    Raises:
+        DesignErrors: the starting tables are refused.
+    """
     plan = starting_plan(d)
     columns = plan.columns
     k_m = km_scale * centred_km(targets)
@@ -438,17 +546,24 @@ def with_webs(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, A
         g = plan.element(number).geometry
         web = solve_web(g, plan.material, k, 0.02, min(2 * r, d["sheet"]["thickness_mm"] * 2))
         if web is None:
-            return d, None, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) reaches "
-                             f"K = {k:.4g} N/mm at the closed form"]
+            return plan, None, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) "
+                                f"reaches K = {k:.4g} N/mm at the closed form"]
         thinnest = web_floor(d)
         if web < thinnest.value_mm - 1e-9:
-            return d, None, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), below "
-                             f"the {thinnest.value_mm:g} mm {process_name(d)} holds in a "
-                             f"{d['sheet']['thickness_mm']:g} mm sheet ({thinnest.rule})"]
+            return plan, None, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), "
+                                f"below the {thinnest.value_mm:g} mm {process_name(d)} holds "
+                                f"in a {d['sheet']['thickness_mm']:g} mm sheet "
+                                f"({thinnest.rule})"]
         webs.append(web)
+    return plan, (webs[0], webs[1]), []
+
+
+def webbed_tables(d: dict, webs: tuple[float, float], columns: int) -> dict:
+    """A copy of ``d`` whose references (row 1) take the first of ``webs`` and measuring
+    elements (row 2) the second (mm)."""
     d = copy_tables(d)
     d["comb"]["web_thicknesses_mm"] = [webs[0]] * columns + [webs[1]] * columns
-    return d, plan_from_dict(d), []
+    return d
 
 
 def starting_plan(d: dict) -> Any:
@@ -480,7 +595,7 @@ def starting_plan(d: dict) -> Any:
         plan, refused = kept[key]
     else:
         try:
-            plan, refused = plan_from_dict(d), None
+            plan, refused = target_free_plan(d), None
         except DesignErrors as exc:
             plan, refused = None, exc
         if key is not None:
@@ -488,6 +603,122 @@ def starting_plan(d: dict) -> Any:
     if refused is not None:
         raise refused
     return plan
+
+
+#: The requirements a comb's tables take from the search's targets (:func:`comb_tables`).
+TARGET_REQUIREMENTS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km")
+#: Most plans :func:`target_free_plan` keeps in a process (least recently used dropped
+#: first): a jaw's atlas plans a few hundred sheets' starting combs (grades x sheets x
+#: column counts).
+TARGET_FREE_PLANS_KEPT = 512
+_TARGET_FREE_PLANS: "OrderedDict[tuple, tuple[Any, DesignErrors | None]]" = OrderedDict()
+_TARGET_FREE_PLANS_LOCK = threading.Lock()
+
+
+def target_free_plan(d: dict) -> Any:
+    """``plan_from_dict(d)`` for a reader of the plan's elements, material, strength,
+    columns and envelope only, not of its requirements, raw tables or hash (a sheet's
+    starting plan, a comb's envelope): kept per process by the tables less the
+    requirements the search writes from its targets (:data:`TARGET_REQUIREMENTS`), so the
+    atlas's points plan each sheet's starting comb once, not once a point.
+
+    Exact where it is kept: the tables' validation reads those requirements in their own
+    section's fields and its K_obj range rule alone (:class:`RequirementsSection`,
+    :func:`~tactcad.design.requirements_section.check_requirements`), and the plan's
+    elements, material and envelope not at all, so tables that differ in them alone, each
+    passing those checks on its own (:func:`targets_validate`), are refused alike or
+    planned alike but for the requirements and hash. Tables whose requirements fail them
+    are planned afresh.
+
+    Args:
+        d: a comb's tables.
+
+    Returns:
+        The plan: where kept, the first such tables' (their requirements and hash).
+
+    Raises:
+        DesignErrors: the tables are refused (where kept, the first such tables' refusal).
+    """
+    req = d.get("requirements")
+    if not isinstance(req, dict) or not targets_validate(req):
+        return plan_from_dict(d)
+    try:
+        key = exact_key({**d, "requirements": {k: v for k, v in req.items()
+                                               if k not in TARGET_REQUIREMENTS}})
+    except TypeError:  # keys that do not sort: not a TOML file's tables
+        return plan_from_dict(d)
+    with _TARGET_FREE_PLANS_LOCK:
+        kept = _TARGET_FREE_PLANS.get(key)
+        if kept is not None:
+            _TARGET_FREE_PLANS.move_to_end(key)
+    if kept is None:
+        try:
+            kept = (plan_from_dict(d), None)
+        except DesignErrors as exc:
+            kept = (None, exc)
+        with _TARGET_FREE_PLANS_LOCK:
+            _TARGET_FREE_PLANS[key] = kept
+            while len(_TARGET_FREE_PLANS) > TARGET_FREE_PLANS_KEPT:
+                _TARGET_FREE_PLANS.popitem(last=False)
+    plan, refused = kept
+    if refused is not None:
+        raise refused
+    return plan
+
+
+def targets_validate(requirements: Mapping[str, Any]) -> bool:
+    """Whether a ``[requirements]`` table passes, on its own, every check a design file's
+    validation makes of it alone: its section's fields
+    (:class:`~tactcad.design.requirements_section.RequirementsSection`) and the K_obj
+    range's LO < HI (:func:`~tactcad.design.requirements_section.check_requirements`).
+
+    Args:
+        requirements: the table.
+
+    Returns:
+        True when neither refuses it.
+    """
+    from tactcad.design.requirements_section import RequirementsSection, check_requirements
+    from tactcad.vocabulary.schema import Problems, validate
+
+    p = Problems()
+    model = validate(_requirements_file(RequirementsSection),
+                     {"requirements": dict(requirements)}, p)
+    if model is not None:
+        check_requirements(model, p)
+    return model is not None and not p
+
+
+def exact_key(tables: Any) -> tuple:
+    """A key of a design file's tables that tells apart every two a validation may tell
+    apart: tables by their sorted keys, arrays and tuples apart, every scalar by its type
+    and its repr (so -0.0 is not 0.0, and 1 is not 1.0).
+
+    Args:
+        tables: a table, an array or a scalar.
+
+    Returns:
+        A hashable key.
+
+    Raises:
+        TypeError: a table whose keys do not sort.
+    """
+    kind = type(tables)
+    if kind is dict:
+        return ("table", tuple(sorted((k, exact_key(v)) for k, v in tables.items())))
+    if kind is list or kind is tuple:
+        return (kind.__name__, tuple(exact_key(v) for v in tables))
+    return (kind.__name__, repr(tables))
+
+
+@functools.lru_cache(maxsize=1)
+def _requirements_file(section: type) -> type:
+    # a file model holding [requirements] alone (pydantic builds a model in milliseconds)
+    from pydantic import create_model
+
+    from tactcad.vocabulary.schema import Section
+
+    return create_model("RequirementsFile", __base__=Section, requirements=(section, ...))
 
 
 def with_stops(d: dict, plan: Any, targets: Targets) -> dict:
@@ -550,6 +781,30 @@ def judge(d: dict, envelope_of: Callable | None, room: Any = None
     """(plan, failures, full-scale-force margin, rated force) of a candidate's tables
     (:func:`judge_limits` without the failures' limit codes)."""
     plan, fails, _, margin, rated = judge_limits(d, envelope_of, room)
+    return plan, fails, margin, rated
+
+
+def judge_unless_too_tall(d: dict, envelope_of: Callable | None, room: Any = None
+                          ) -> tuple[Any, tuple[str, ...], float, float | None]:
+    """:func:`judge`, except that a plan standing taller than the jaw's ``room``
+    (:func:`too_tall`) is refused by its height alone, without its verification matrix:
+    such a plan fails :func:`judge` too, which lists the matrix's failures before it.
+
+    Args:
+        d, envelope_of, room: as :func:`judge`.
+
+    Returns:
+        (plan, failures, full-scale-force margin, rated force N); for a plan too tall,
+        (the plan, the height's failure, -inf, None).
+    """
+    try:
+        plan = plan_from_dict(d)
+    except DesignErrors as exc:
+        return None, refused_fields(exc)[0], -math.inf, None
+    tall = too_tall(plan, room) if room is not None else ()
+    if tall:
+        return plan, tall, -math.inf, None
+    plan, fails, _, margin, rated, _ = judge_bounded(d, envelope_of, room, plan)
     return plan, fails, margin, rated
 
 
@@ -789,15 +1044,18 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
                     grade: str | None = None, envelope_of: Callable | None = None,
                     judged: list[CombCandidate] | None = None,
-                    scales: tuple[float, ...] = KM_SCALES) -> CombCandidate | None:
+                    scales: tuple[float, ...] = KM_SCALES,
+                    only_what_decides: bool = False) -> CombCandidate | None:
     """The candidate :func:`chosen` picks, found by judging the candidates in its order of
     preference (the softest pair first, the thicker sheet on a tie) and stopping at the
     first that counts with :data:`FORCE_MARGIN_REL` to spare: none softer or thicker can
     come before it, so it is ``chosen(counting(comb_candidates(...)))`` without judging the
     rest. A candidate whose binding limit already falls short of the margin
     (:func:`short_of_margin`) cannot be that one, so its verification matrix waits until
-    no candidate has the margin. None when no candidate has the margin (then only the
-    whole search decides: the one with the most margin, or a refusal).
+    no candidate has the margin; one whose yield or fatigue limit alone falls short of it
+    (:func:`short_by_strength`) waits with its stops, plan and limits as well. None when
+    no candidate has the margin (then only the whole search decides: the one with the
+    most margin, or a refusal).
 
     Args:
         targets, room, columns, base, grade, envelope_of: as :func:`comb_candidates`.
@@ -808,6 +1066,9 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
             (:func:`settled_short`; the others are sketched from their limits).
         scales: the K_m scales walked (default :data:`KM_SCALES`); a caller leaves out only
             scales none of whose candidates can count (:func:`atlas_scales`).
+        only_what_decides: True: when none has the margin, a candidate
+            :func:`short_by_strength` is weighed only where it can change what the design
+            atlas reads of the search (:func:`settled_walk`), else left out of ``judged``.
 
     Returns:
         The chosen candidate, or None.
@@ -818,24 +1079,103 @@ def first_preferred(targets: Targets, room: Any, columns: int, base: Mapping[str
 
     base = searched_base(base, columns)
     judged = [] if judged is None else judged
-    short: list[tuple] = []  # judged only when none has the margin
+    walked: list = []  # each candidate walked, or its webs while its stops wait
     with candidates_weighed():
         for scale in scales:
             for sheet in sorted(sheets_of(base), reverse=True):
-                c, d, at = prepared_candidate(base, sheet, scale, columns, room, targets,
-                                              grade)
-                if c is None:
-                    plan, limits = planned_limits(d)
-                    if limits is not None and short_of_margin(d, limits):
-                        short.append((d, sheet, scale, at, plan, limits))
-                        continue
-                    c = judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
-                judged.append(c)
-                if c.plan is not None and not c.failures \
+                c, webbed, _ = webbed_candidate(base, sheet, scale, columns, room, targets,
+                                                grade)
+                aside = short_by_strength(webbed) if c is None else None
+                if aside is not None:
+                    walked.append(aside)  # not the answer: weighed if none is
+                    continue
+                c = weighed_candidate(c, webbed, envelope_of)
+                walked.append(c)
+                if isinstance(c, CombCandidate) and c.plan is not None and not c.failures \
                         and c.force_margin_rel >= FORCE_MARGIN_REL:
+                    judged += [w for w in walked if isinstance(w, CombCandidate)]
                     return c
-        judged += settled_short(short, judged, envelope_of)
+        # none has the margin: every candidate as the walk would have weighed it in turn
+        judged += settled_walk(walked, envelope_of, only_what_decides)
     return None
+
+
+def settled_walk(walked: list, envelope_of: Callable | None,
+                 only_what_decides: bool = False) -> list[CombCandidate]:
+    """:func:`first_preferred`'s candidates when none has the margin, each as the walk
+    weighs it (:func:`weighed_candidate`), those set aside short of the margin settled
+    (:func:`settled_short`).
+
+    Args:
+        walked: the walk's candidates, short ones set aside (tuples) and those waiting
+            with their webs (:class:`Waiting`), in its order.
+        envelope_of: as :func:`judge_limits`.
+        only_what_decides: True: a :class:`Waiting` candidate is weighed only where it can
+            change whether some candidate counts (none can: its margin is short of the
+            force), the nearest failure (:func:`nearest_failure`) or its judgement
+            (:func:`settled_short`: its margin bound within the slack of the nearest's),
+            or whether any candidate is rated (none of the others is); the waiting ones
+            with the most margin first, until none of the rest can. The others are left
+            out of the answer: what the design atlas reads of it is the whole walk's.
+
+    Returns:
+        The candidates (with ``only_what_decides``, less those left out).
+    """
+    if not only_what_decides:
+        walked = [weighed_candidate(None, w.webbed, envelope_of) if isinstance(w, Waiting)
+                  else w for w in walked]
+        judged = [w for w in walked if isinstance(w, CombCandidate)]
+        return judged + settled_short([w for w in walked if isinstance(w, tuple)], judged,
+                                      envelope_of)
+    waits = sorted((w for w in walked if isinstance(w, Waiting)),
+                   key=lambda w: -w.margin_bound_rel)
+    weighed = [w for w in walked if not isinstance(w, Waiting)]
+    in_full: dict = {}  # (sheet, scale) -> judged in full by settled_short, kept
+    while True:
+        judged = [w for w in weighed if isinstance(w, CombCandidate)]
+        tried = judged + settled_short([w for w in weighed if isinstance(w, tuple)], judged,
+                                       envelope_of, in_full)
+        if not waits or counting(tried):
+            return tried
+        nearest = nearest_failure(tried)
+        if nearest is None:
+            pick = 0
+        else:
+            # settled_short judges a sketch within 2 x the slack of the nearest's margin
+            m = nearest.force_margin_rel
+            least = m - 4 * BOUND_SLACK_REL * (1.0 + abs(m))
+            pick = next((i for i, w in enumerate(waits) if w.margin_bound_rel >= least), None)
+        if pick is None and not any(c.rated_force_N for c in tried):
+            pick = 0  # whether any is rated decides the refusal's option
+        if pick is None:
+            return tried
+        weighed.append(weighed_candidate(None, waits.pop(pick).webbed, envelope_of))
+
+
+def weighed_candidate(refused: CombCandidate | None, webbed: WebbedCandidate | None,
+                      envelope_of: Callable | None) -> CombCandidate | tuple:
+    """A candidate of :func:`first_preferred`'s walk weighed: refused before its webs
+    (``refused``, as it is), refused by its plan, judged (:func:`judged_candidate`), or,
+    where its closed-form limits already fall short of the force margin
+    (:func:`short_of_margin`), set aside unjudged for :func:`settled_short`.
+
+    Args:
+        refused: the candidate refused before its webs, or None. webbed: else its webs
+            (:func:`webbed_candidate`). envelope_of: as :func:`judge_limits`.
+
+    Returns:
+        The candidate, or (tables, sheet mm, K_m scale, room, plan, limits) set aside.
+    """
+    if refused is not None:
+        return refused
+    c, d = stopped_candidate(webbed)
+    if c is not None:
+        return c
+    plan, limits = planned_limits(d)
+    if limits is not None and short_of_margin(d, limits):
+        return (d, webbed.sheet_mm, webbed.km_scale, webbed.room, plan, limits)
+    return judged_candidate(d, webbed.sheet_mm, webbed.km_scale, envelope_of, webbed.room,
+                            plan, limits)
 
 
 def limits_bound(limits: list) -> ForceBound:
@@ -882,7 +1222,8 @@ def sketched_candidate(d: dict, sheet: float, km_scale: float, plan: Any, bound:
 
 
 def settled_short(short: list[tuple], judged: list[CombCandidate],
-                  envelope_of: Callable | None) -> list[CombCandidate]:
+                  envelope_of: Callable | None, in_full: dict | None = None
+                  ) -> list[CombCandidate]:
     """The candidates :func:`first_preferred` set aside as short of the force margin, each
     judged where its judgement can change what the search answers: whether some candidate
     counts (which, and with what margin) or, where none does, the nearest failure
@@ -897,17 +1238,30 @@ def settled_short(short: list[tuple], judged: list[CombCandidate],
         short: (tables, sheet mm, K_m scale, room, plan, limits) of each candidate set
             aside. judged: the candidates judged already (none counting with the margin).
         envelope_of: as :func:`judge_limits`.
+        in_full: where given, each candidate judged in full is kept in it by (sheet,
+            K_m scale) and read from it again (the same entries of ``short`` settled
+            again with more candidates beside them, :func:`settled_walk`).
 
     Returns:
         One candidate per entry of ``short``, in its order.
     """
+    kept = {} if in_full is None else in_full
+
+    def in_full_of(entry: tuple) -> CombCandidate:
+        d, sheet, scale, at, plan, limits = entry
+        if (sheet, scale) not in kept:
+            kept[(sheet, scale)] = judged_candidate(d, sheet, scale, envelope_of, at, plan,
+                                                    limits)
+        return kept[(sheet, scale)]
+
     out: list[CombCandidate] = []
-    for d, sheet, scale, at, plan, limits in short:
+    for entry in short:
+        d, sheet, scale, at, plan, limits = entry
         bound = limits_bound(limits)
         if bound.fails_at(d["requirements"]["full_scale_force_N"]):
             out.append(sketched_candidate(d, sheet, scale, plan, bound))
         else:
-            out.append(judged_candidate(d, sheet, scale, envelope_of, at, plan, limits))
+            out.append(in_full_of(entry))
     while True:
         nearest = nearest_failure(judged + out)
         close = [i for i, c in enumerate(out) if c.sketched and nearest is not None
@@ -916,8 +1270,7 @@ def settled_short(short: list[tuple], judged: list[CombCandidate],
         if not close:
             return out
         for i in close:  # judged in full: the nearest's first failure is its own
-            d, sheet, scale, at, plan, limits = short[i]
-            out[i] = judged_candidate(d, sheet, scale, envelope_of, at, plan, limits)
+            out[i] = in_full_of(short[i])
 
 
 def in_search_order(judged: list[CombCandidate], base: Mapping[str, Any]
@@ -943,9 +1296,17 @@ def counting(tried: list[CombCandidate]) -> list[CombCandidate]:
 
 def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, columns: int,
                        *, name: str = "grasper_insert", envelope_of: Callable | None = None,
-                       max_grasp_force_N: float | None = None) -> CombDesign:
+                       max_grasp_force_N: float | None = None,
+                       fastener_reasons: bool = True) -> CombDesign:
     """The comb :func:`comb_for_jaw` writes from candidates some of which count: the one
     :func:`chosen` (or the first :func:`surviving` the grasp), with its fasteners and reasons.
+
+    Args:
+        fastener_reasons: False where only the comb's plan is read, not the reasons of the
+            screws and dowels tried before its own (the design atlas's figures): a pair
+            too tall for the jaw is then refused by its height alone
+            (:func:`with_fasteners`), the same pair is chosen and the plan is the same
+            but for those reasons' words.
 
     Raises:
         InverseDesignError: with ``max_grasp_force_N``, no candidate survives the grasp.
@@ -955,7 +1316,8 @@ def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, 
     with candidates_weighed():
         first = chosen(good) if max_grasp_force_N is None else \
             surviving(good, max_grasp_force_N, room, envelope_of, targets, columns)
-        best, fasteners = with_fasteners(first, room, envelope_of)
+        best, fasteners = with_fasteners(first, room, envelope_of,
+                                         first_failure=fastener_reasons)
     data = named(best.data, name, targets, room, best, columns, fasteners)
     return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
 
@@ -1293,6 +1655,49 @@ def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, 
         (the refused candidate or None, the tables or None, the room it is judged in: an
         outline's room narrowed to the sheet's comb).
     """
+    refused, webbed, room = webbed_candidate(base, sheet, km_scale, columns, room, targets,
+                                             grade)
+    if refused is not None:
+        return refused, None, room
+    refused, d = stopped_candidate(webbed)
+    return refused, d, room
+
+
+@dataclass(frozen=True)
+class WebbedCandidate:
+    """One sheet's comb at one K_m scale with its webs solved, before its tables take them
+    and its stops are set (:func:`webbed_candidate`; :func:`stopped_candidate` goes on).
+
+    Attributes:
+        sheet_mm: the sheet (mm). km_scale: K_m over eq. 2's centre.
+        tables: the sheet's comb tables at their starting webs (:func:`sheet_tables`'s:
+            shared, read only). start: their plan (:func:`starting_plan`).
+        webs: (the references' web, the measuring elements' web) (mm).
+        targets: the targets. room: the room it is judged in.
+    """
+
+    sheet_mm: float
+    km_scale: float
+    tables: dict
+    start: Any
+    webs: tuple[float, float]
+    targets: Targets
+    room: Any
+
+
+def webbed_candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
+                     targets: Targets, grade: str | None
+                     ) -> tuple[CombCandidate | None, WebbedCandidate | None, Any]:
+    """:func:`prepared_candidate`'s first half: the sheet's tables and their webs solved,
+    or the candidate refused before (the pitch, the starting plan, a web).
+
+    Args:
+        base, sheet, km_scale, columns, room, targets, grade: as :func:`candidate`.
+
+    Returns:
+        (the refused candidate or None, the :class:`WebbedCandidate` or None, the room it
+        is judged in: an outline's room narrowed to the sheet's comb).
+    """
     from tactcad.vocabulary.binding_limits import FOOTPRINT, SHEET
 
     if getattr(room, "outline", None) is not None:
@@ -1305,11 +1710,8 @@ def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, 
     bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
     if not binding:
         try:
-            d, plan, binding = with_webs(d, targets, km_scale)
+            start, webs, binding = solved_webs(d, targets, km_scale)
             codes = (SHEET,) * len(binding)  # no web the sheet's process cuts reaches K
-            if not binding:
-                bound = None
-                d = with_stops(d, plan, targets)
         except DesignErrors as exc:
             binding, codes = refused_fields(exc)
             if not force_free(exc):
@@ -1317,7 +1719,111 @@ def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, 
     if binding:
         return CombCandidate(sheet, km_scale, None, None, tuple(binding), -math.inf, None,
                              tuple(codes), bound), None, room
-    return None, d, room
+    return None, WebbedCandidate(sheet, km_scale, d, start, webs, targets, room), room
+
+
+def stopped_candidate(w: WebbedCandidate) -> tuple[CombCandidate | None, dict | None]:
+    """:func:`prepared_candidate`'s second half: the tables with ``w``'s webs, planned, and
+    their stops set (:func:`with_stops`), or the candidate refused by its plan.
+
+    Args:
+        w: the candidate with its webs solved (:func:`webbed_candidate`).
+
+    Returns:
+        (the refused candidate or None, the tables or None).
+    """
+    d = webbed_tables(w.tables, w.webs, w.start.columns)
+    bound: ForceBound | None = REFUSED_AT_ANY_FORCE  # until the stops read the force
+    try:
+        plan = plan_from_dict(d)
+        bound = None
+        d = with_stops(d, plan, w.targets)
+    except DesignErrors as exc:
+        binding, codes = refused_fields(exc)
+        if not force_free(exc):
+            bound = None
+        return CombCandidate(w.sheet_mm, w.km_scale, None, None, tuple(binding), -math.inf,
+                             None, tuple(codes), bound), None
+    return None, d
+
+
+def strength_bound_N(w: WebbedCandidate) -> float | None:
+    """The least of the yield and fatigue limits (N) of a candidate's references and
+    measuring elements, with its webs solved and before its stops are set: at least the
+    force its binding limit allows once they are.
+
+    Those limits are yield / (peak stress per N x safety factor) and the notch fatigue
+    strength / peak stress per N (:func:`tactcad.mechanics.limits.element_limits`), the
+    peak stress a function of the web, notch radius, arm and sheet alone
+    (:func:`tactcad.mechanics.element_strength.closed_form_stress`), none of which the
+    stop gaps change: each is, to the bit, a limit :func:`planned_limits` and the
+    verification matrix give the plan with its stops, whose binding limit (the least of
+    all) allows no more.
+
+    Args:
+        w: the candidate (:func:`webbed_candidate`).
+
+    Returns:
+        The force (N); None without a yield strength or a finite positive stress.
+    """
+    from tactcad.mechanics.element_strength import (notch_fatigue_strength,
+                                                    peak_stress_per_newton)
+
+    plan = w.start
+    y = plan.material.yield_strength_MPa
+    if y is None or not math.isfinite(y) or y <= 0:
+        return None  # the plan's limits refuse it: judged as the search judges it
+    notch = notch_fatigue_strength(plan.material)
+    least = math.inf
+    for number, web in ((1, w.webs[0]), (plan.columns + 1, w.webs[1])):
+        g = plan.element(number).geometry
+        s = float(peak_stress_per_newton(web, g.notch_radius_mm, g.arm_length_mm,
+                                         g.sheet_thickness_mm))
+        if not (math.isfinite(s) and s > 0):
+            return None
+        least = min(least, y / (s * plan.strength.safety_factor))
+        if notch is not None:
+            least = min(least, notch.strength_MPa / s)
+    return least if math.isfinite(least) else None
+
+
+def short_by_strength(w: WebbedCandidate) -> "Waiting | None":
+    """Whether a candidate with its webs solved surely lacks :data:`FORCE_MARGIN_REL`
+    before its stops are set: its :func:`strength_bound_N` falls short of (1 + margin) x
+    the full-scale force by :data:`MARGIN_BOUND_SLACK_REL` (the rule of
+    :func:`short_of_margin`, which then holds for it once its stops are set, unless its
+    plan is refused), so it is not :func:`first_preferred`'s answer.
+
+    Args:
+        w: the candidate (:func:`webbed_candidate`).
+
+    Returns:
+        The candidate set aside (:class:`Waiting`) when it is short; None when it is not
+        or has no bound.
+    """
+    bound = strength_bound_N(w)
+    force = w.tables["requirements"]["full_scale_force_N"]
+    if bound is None or not bound * (1.0 + MARGIN_BOUND_SLACK_REL) \
+            < (1.0 + FORCE_MARGIN_REL) * force:
+        return None
+    return Waiting(w, bound / force - 1.0)
+
+
+@dataclass(frozen=True)
+class Waiting:
+    """A candidate of :func:`first_preferred`'s walk set aside with its webs solved
+    (:func:`short_by_strength`): its stops, plan and limits wait until no candidate has
+    the margin.
+
+    Attributes:
+        webbed: the candidate (:func:`webbed_candidate`).
+        margin_bound_rel: the most force margin it can have, its
+            :func:`strength_bound_N` over the full-scale force less 1 (its judgement's,
+            its sketch's or -inf when its plan is refused: none is above it).
+    """
+
+    webbed: WebbedCandidate
+    margin_bound_rel: float
 
 
 #: How far (relative) a candidate's closed-form binding force, worked out before its
@@ -1399,11 +1905,23 @@ def fastener_pairs() -> list[tuple[str, float]]:
     return [(sc, dw) for sc in screws for dw in sorted(DOWEL_PINS, reverse=True)]
 
 
-def with_fasteners(best: CombCandidate, room: Any, envelope_of: Callable | None
+def with_fasteners(best: CombCandidate, room: Any, envelope_of: Callable | None,
+                   first_failure: bool = True
                    ) -> tuple[CombCandidate, tuple[FastenerTry, ...]]:
     """The chosen comb with the first screw and dowel pair of :func:`fastener_pairs` that
     counts (validates, passes :func:`judge` and stands in the room), and every pair tried up
-    to it. The chosen comb's own pair counts, so one always does."""
+    to it. The chosen comb's own pair counts, so one always does.
+
+    Args:
+        best: the chosen comb. room: the jaw's room. envelope_of: as :func:`judge`.
+        first_failure: False: a pair whose plan stands taller than ``room``
+            (:func:`too_tall`) is refused by that alone, its verification matrix left
+            out (it counts no more than when judged in full); its failures are then the
+            height's, where a full judgement lists the matrix's failures first.
+
+    Returns:
+        (the comb with the pair that counts, every pair tried in order).
+    """
     tried = []
     for screw, dowel in fastener_pairs():
         d = copy_tables(best.data)
@@ -1414,7 +1932,8 @@ def with_fasteners(best: CombCandidate, room: Any, envelope_of: Callable | None
         if own:
             tried.append(FastenerTry(screw, dowel, ()))
             return best, tuple(tried)
-        plan, fails, margin, rated = judge(d, envelope_of, room)
+        plan, fails, margin, rated = judge(d, envelope_of, room) if first_failure else \
+            judge_unless_too_tall(d, envelope_of, room)
         tried.append(FastenerTry(screw, dowel, fails))
         if plan is not None and not fails:
             return replace(best, data=d, plan=plan, force_margin_rel=margin,
@@ -1442,12 +1961,14 @@ def comb_envelope_mm(base: dict, sheet: float, columns: int, room: Any, targets:
     """The envelope (across, along, height; mm) of one sheet's comb at the base's webs,
     whatever the pocket (its footprint requirement left out); None when it has no plan."""
     d, binding = comb_tables(base, sheet, columns, room, targets, grade)
+    if binding:
+        return None
     d["requirements"].pop("footprint_mm", None)
     try:
-        plan = plan_from_dict(d)
+        plan = target_free_plan(d)  # its envelope does not depend on the targets
     except DesignErrors:
         return None
-    return None if binding else tuple(float(v) for v in plan.comb.envelope_mm)
+    return tuple(float(v) for v in plan.comb.envelope_mm)
 
 
 def least_pitch_mm(base: dict, sheet: float, columns: int, room: Any, targets: Targets,
@@ -1578,11 +2099,16 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
     """A line for a refusal when the pocket is too small across or too shallow for every
     sheet's comb: the smallest comb's pocket, the jaw-file keys that would hold it (a lab's
     own jaw) and the first jaw of ``other_rooms`` that holds it, with those as pasteable
-    alternatives (empty when some sheet's comb fits the pocket: something else binds)."""
-    needs = [(sheet, env) for sheet in sheets_of(base)
-             if (env := comb_envelope_mm(base, sheet, columns, room, targets, grade))]
-    if not needs or any(env[0] <= room.across_mm and env[2] <= room.height_mm
-                        for _, env in needs):
+    alternatives (empty when some sheet's comb fits the pocket: something else binds; the
+    sheets after the first that fits are not planned)."""
+    needs = []
+    for sheet in sheets_of(base):
+        env = comb_envelope_mm(base, sheet, columns, room, targets, grade)
+        if env and env[0] <= room.across_mm and env[2] <= room.height_mm:
+            return "", []
+        if env:
+            needs.append((sheet, env))
+    if not needs:
         return "", []
     sheet, env = min(needs, key=lambda n: (n[1][0], n[1][2]))
     holds = [option for option, other in other_rooms.items()

@@ -8,17 +8,23 @@ Every point is design's own verdict, reached by design's own functions:
 * the monolithic comb: first the candidates in the order design prefers them, up to the
   first that counts with margin (:func:`tactcad.studies.comb_design.first_preferred`: the
   one design chooses, found without judging the rest, nor the verification matrices of
-  those whose closed-form limits already fall short of the margin); where none does, every sheet at
+  those whose closed-form limits already fall short of the margin, nor the stops and
+  plans of those whose yield or fatigue limit alone does:
+  :func:`~tactcad.studies.comb_design.short_by_strength`); where none does, every sheet at
   every K_m scale whose stops can fit (:func:`~tactcad.studies.comb_design.atlas_scales`:
   the others are refused on every sheet and change no record) has been judged at the
-  closed form (those whose limits already fail the force only as far as the record needs:
-  :func:`~tactcad.studies.comb_design.settled_short`), taken in
+  closed form as far as the record needs (those whose limits already fail the force:
+  :func:`~tactcad.studies.comb_design.settled_short`; those short by strength only where
+  their bound reaches the nearest failure's margin or none else is rated:
+  :func:`~tactcad.studies.comb_design.settled_walk`), taken in
   :func:`~tactcad.studies.comb_design.comb_candidates`' order
   (:func:`~tactcad.studies.comb_design.in_search_order`); where one counts, the comb design writes
-  (:func:`~tactcad.studies.comb_design.comb_of_candidates`); where none does, the limit of
-  the candidate nearest to counting (:func:`~tactcad.studies.comb_design.nearest_failure`,
-  the refusal's own rule). The refusal's pasteable force, a bisection over the candidates
-  that costs ten times the verdict, is left out: it does not change the verdict;
+  (:func:`~tactcad.studies.comb_design.comb_of_candidates`, a screw and dowel too tall for
+  the jaw refused by its height alone: the figures read no reasons); where none does, the
+  limit of the candidate nearest to counting
+  (:func:`~tactcad.studies.comb_design.nearest_failure`, the refusal's own rule). The
+  refusal's pasteable force, a bisection over the candidates that costs ten times the
+  verdict, is left out: it does not change the verdict;
 * the silicon die: :func:`tactcad.products.silicon_die.studies.die_doping.doped_die_plan`
   and its mount in the jaw, refused or planned.
 
@@ -333,13 +339,16 @@ def comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) -> dict:
         RefusedPoint: no candidate counts (the nearest's first failure), or the columns are
             out of the comb's range.
     """
-    from tactcad.studies.comb_design import web_solves_kept
+    from tactcad.studies.comb_design import candidates_weighed, web_solves_kept
     from tactcad.vocabulary.binding_limits import FOOTPRINT
 
     if atlas.comb_base is None:
         raise RefusedPoint("--jaw", "the comb's smallest build does not fit the jaw's pocket",
                            FOOTPRINT)
-    with web_solves_kept():  # the full search and the refusal meet the same webs again
+    # the full search and the refusal meet the same webs again, and the written comb's
+    # figures the elements its search judged (their closed-form estimates kept: the
+    # batch says no range warning)
+    with web_solves_kept(), candidates_weighed():
         return searched_comb_figures(atlas, grade, targets, columns)
 
 
@@ -364,9 +373,11 @@ def searched_comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) ->
         # a comb that counts with margin, in the chosen one's order, saves the full search
         judged: list = []
         # scales whose stops cannot fit change no verdict, limit or option: not judged
+        # and of the candidates that cannot have the margin, only those that can change
+        # the record are weighed when none has it
         preferred = first_preferred(targets, atlas.room, columns, atlas.comb_base,
                                     grade=grade, envelope_of=atlas.envelope_of, judged=judged,
-                                    scales=atlas_scales(targets))
+                                    scales=atlas_scales(targets), only_what_decides=True)
         if preferred is not None:
             base, tried = None, [preferred]
         else:  # every candidate was judged: the full search's, in its order
@@ -380,8 +391,9 @@ def searched_comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) ->
         refused = InverseDesignError("no comb counts", option)
         refused.candidates = tuple(tried)
         raise refusal_of(refused)
+    # the plan's figures read no reasons: a screw and dowel too tall is refused by its height
     design = comb_of_candidates(tried, targets, atlas.room, columns,
-                                envelope_of=atlas.envelope_of)
+                                envelope_of=atlas.envelope_of, fastener_reasons=False)
     return plan_figures(design.plan, atlas.envelope_of) | {
         "sheet_mm": float(design.data["sheet"]["thickness_mm"])}
 

@@ -20,6 +20,7 @@ Units: mm, relative for the modulus and the band.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 from typing import Callable
@@ -43,11 +44,22 @@ PROCESS_LIMITS = {"web_thickness_mm": 0.005, "notch_radius_mm": 0.005, "arm_leng
 
 def contributions(plan: Plan, tol: Tolerances, correction: Correction | None = None
                   ) -> dict[str, dict[str, float]]:
-    """Per distinct part, each tolerance's relative K change c_i (see module docstring)."""
+    """Per distinct part, each tolerance's relative K change c_i (see module docstring):
+    a pure function of the distinct parts (name and geometry), the material, the
+    tolerances and the correction, kept per process by those (the verification of a
+    design search's candidate and of the design it writes of it ask the same)."""
     corr = load_correction() if correction is None else correction
-    m = plan.material
+    parts = tuple(plan.distinct_elements.items())
+    out = _part_contributions(parts, plan.material, tol, corr)
+    return {name: dict(c) for name, c in out.items()}
+
+
+@functools.lru_cache(maxsize=256)
+def _part_contributions(parts: tuple, m, tol: Tolerances, corr: Correction
+                        ) -> dict[str, dict[str, float]]:
+    # contributions' work, on its hashable inputs (each caller copies the answer)
     out = {}
-    for name, g in plan.distinct_elements.items():
+    for name, g in parts:
         base = dict(web=g.web_thickness_mm, r=g.notch_radius_mm, a=g.arm_length_mm,
                     E=m.youngs_modulus_MPa)
 

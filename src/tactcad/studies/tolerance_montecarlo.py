@@ -44,7 +44,9 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+import threading
+from collections import OrderedDict
+from dataclasses import dataclass, field, replace
 from typing import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
@@ -543,7 +545,10 @@ def element_band_report(plan: Plan, samples: int = MONTE_CARLO_SAMPLES,
         plan: the design. samples, seed, tolerances, correction: as :func:`run_tolerance`.
 
     Returns:
-        :class:`ToleranceReport` with ``units`` and ``web_tolerance`` empty.
+        :class:`ToleranceReport` with ``units`` and ``web_tolerance`` empty. A pure
+        function of the plan's elements (numbers and geometries), material and sheet, the
+        samples, seed, tolerances and correction: kept per process by those
+        (:data:`BAND_REPORTS_KEPT` at most), each caller given its own copy.
 
     Raises:
         DesignError: bad samples or seed (field named).
@@ -551,12 +556,35 @@ def element_band_report(plan: Plan, samples: int = MONTE_CARLO_SAMPLES,
     Source: JCGM 101:2008 (95 % coverage interval from the 2.5 and 97.5 percentiles).
     """
     tol = Tolerances.of_plan(plan) if tolerances is None else tolerances
-    specs = chunk_specs(plan, tol, samples, seed, correction)
-    k = np.concatenate([run_chunk(spec)["K"] for spec in specs], axis=0)
-    elements = element_statistics(plan, k, nominal_stiffness(plan, specs[0].correction))
-    return ToleranceReport(samples=int(k.shape[0]), seed=seed, tolerances=tol,
-                           elements=elements, units=[], web_tolerance=[],
-                           correction_source=specs[0].correction.source)
+    corr = load_correction() if correction is None else correction
+    # everything of the plan the draw and its statistics read
+    key = (tuple((s.number, s.geometry) for s in plan.slots), plan.material,
+           plan.sheet_thickness_mm, samples, seed, tol, corr)
+    with _BAND_REPORTS_LOCK:
+        kept = _BAND_REPORTS.get(key)
+        if kept is not None:
+            _BAND_REPORTS.move_to_end(key)
+    if kept is None:
+        specs = chunk_specs(plan, tol, samples, seed, corr)
+        k = np.concatenate([run_chunk(spec)["K"] for spec in specs], axis=0)
+        elements = element_statistics(plan, k, nominal_stiffness(plan, specs[0].correction))
+        kept = ToleranceReport(samples=int(k.shape[0]), seed=seed, tolerances=tol,
+                               elements=elements, units=[], web_tolerance=[],
+                               correction_source=specs[0].correction.source)
+        with _BAND_REPORTS_LOCK:
+            _BAND_REPORTS[key] = kept
+            while len(_BAND_REPORTS) > BAND_REPORTS_KEPT:
+                _BAND_REPORTS.popitem(last=False)
+    return replace(kept, elements=[dict(e) for e in kept.elements], units=[],
+                   web_tolerance=[], notes=[], table1_spread=[])
+
+
+#: Most :func:`element_band_report` answers kept in a process (least recently used dropped
+#: first): a design search verifies a candidate, then the design it writes of it, with the
+#: same elements; a report holds a few numbers per element.
+BAND_REPORTS_KEPT = 256
+_BAND_REPORTS: "OrderedDict[tuple, ToleranceReport]" = OrderedDict()
+_BAND_REPORTS_LOCK = threading.Lock()  # a Dask worker may run tasks on several threads
 
 
 def _check_k_obj(x) -> float:

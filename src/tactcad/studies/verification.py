@@ -255,10 +255,13 @@ def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
     Raises:
         UnknownModelError: ``fig.model`` is not a ladder level.
     """
-    from tactcad.mechanics.readout_chain import element_force_resolution_N, row_units
+    from tactcad.mechanics.ladder import is_meshed
+    from tactcad.mechanics.readout_chain import (element_force_resolution_N, row_units,
+                                                 unmeshed_force_resolution_N)
     from tactcad.mechanics.resolution import ReadUnit
 
-    df = {name: d["dF"] for name, d in element_force_resolution_N(plan, fig.model).items()}
+    df = unmeshed_force_resolution_N(plan, fig.model) if not is_meshed(fig.model) else \
+        {name: d["dF"] for name, d in element_force_resolution_N(plan, fig.model).items()}
     read, errors = [], []
     for ref, meas in row_units(plan, fig.k):
         r, m = ref.geometry.part_name, meas.geometry.part_name
