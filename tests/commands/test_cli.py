@@ -225,13 +225,24 @@ def test_an_out_name_too_long_for_the_file_system_is_a_bad_out(capsys, tmp_path,
     assert "bytes (the file system's limit)" in err["allowed"]
 
 
-@pytest.mark.parametrize("command", ["stiffness", "modal"])
+@pytest.mark.parametrize("command", ["stiffness", "modal", "thermal"])
 def test_an_element_the_design_has_not_is_refused_as_the_option(capsys, command):
     """`--element 99` was refused as `number = 99` (the API's argument), not the option."""
     code = cli.main([command, "--element", "99", "--json"])
     err = json.loads(capsys.readouterr().out)["error"]
     assert code == 2 and err["field"] == "--element" and err["value"] == 99
     assert err["message"].startswith("--element = 99: allowed an integer 1 ... ")
+
+
+@pytest.mark.parametrize("command", ["stiffness", "modal", "thermal"])
+@pytest.mark.parametrize("value", ["2.5", "x", "1e3"])
+def test_an_element_that_is_no_integer_names_the_designs_numbers(capsys, command, value):
+    """`--element 2.5` was refused by the parser as "an integer 1 ... 10000" where the design
+    has ten elements: it is refused with the design's own numbers, as 99 is."""
+    code = cli.main([command, "--element", value, "--json"])
+    err = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and err["field"] == "--element" and err["value"] == value
+    assert err["allowed"] == "an integer 1 ... 10 (the design's element numbers)"
 
 
 @pytest.mark.parametrize("argv", [["scenes"], ["scenes", "array"], ["strength"],

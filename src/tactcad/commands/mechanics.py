@@ -8,7 +8,8 @@ import json
 from tactcad.mechanics.ladder import is_meshed, levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args, load_from_args, product_view)
-from tactcad.commands.options import check_element_option, count, keep_option_defaults, number
+from tactcad.commands.options import (check_element_option, element_number, keep_option_defaults,
+                                      number)
 from tactcad.errors import DesignError, TactcadError
 
 
@@ -19,7 +20,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "strain per newton, error estimate and wall time of one "
                                    "sensing element (a silicon die: each row's beam on its "
                                    "frame, closed-form or fem3d). Units: N/mm, 1/N, s.")
-    p.add_argument("--element", type=count(1, 10_000, "an element number"), default=None,
+    p.add_argument("--element", type=element_number, default=None,
                    help="element number of an array's design (1 ... rows x columns, numbered "
                         "along row 1, then row 2; required for an array; a silicon die gives "
                         "each row's beam)")

@@ -8,7 +8,8 @@ from pathlib import Path
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
-from tactcad.commands.options import check_element_option, count, keep_option_defaults, number
+from tactcad.commands.options import (check_element_option, count, element_number,
+                                      keep_option_defaults, number)
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
 from tactcad.studies.project_reports import MAX_TIP_MASS_MG
@@ -20,7 +21,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "distinct element (or one), clamped as in the stiffness "
                                    "model, at a modal level, with the error estimate of the "
                                    "first and the wall time. Units: Hz, s.")
-    p.add_argument("--element", type=count(1, 10_000, "an element number"), default=None,
+    p.add_argument("--element", type=element_number, default=None,
                    help="element number of the design (default: every distinct element)")
     p.add_argument("--model", choices=modal_models(), default="closed-form",
                    help=f"modal level: {modal_levels_help()} (default %(default)s)")

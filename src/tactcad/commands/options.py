@@ -93,6 +93,26 @@ def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], i
     return parse
 
 
+def element_number(text: str) -> int | str:
+    """An argparse type for ``--element``: the integer given, or the text as given where it is
+    none, for :func:`check_element_option` to refuse with the design's own element numbers
+    (which the parser, reading no design, does not know).
+
+    Args:
+        text: the option's value.
+
+    Returns:
+        ``int(text)`` where the text is an integer, else the text (at most 40 characters).
+    """
+    try:
+        return int(text)
+    except (TypeError, ValueError):
+        return text[:40]
+
+
+element_number.__name__ = "element number"
+
+
 def output_file(*suffixes: str) -> Callable[[str], str]:
     """An argparse type: a file to write, its name ending in one of ``suffixes``
     (any case), not an existing folder."""
@@ -300,14 +320,15 @@ def check_element_option(number: int, plan) -> None:
     name (the design's own lookup names its argument, not the option).
 
     Args:
-        number: ``--element`` as given.
+        number: ``--element`` as given (:func:`element_number`: an integer, or the text
+            where it is none).
         plan: the design's plan (its ``slots``, numbered 1 ... rows x columns).
 
     Raises:
         DesignError: ``--element``, its value and the design's element numbers.
     """
     numbers = sorted(s.number for s in plan.slots)
-    if number not in numbers:
+    if not isinstance(number, int) or number not in numbers:
         raise DesignError("--element", number,
                           f"an integer {numbers[0]} ... {numbers[-1]} (the design's element "
                           "numbers)")

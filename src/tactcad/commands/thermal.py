@@ -7,7 +7,7 @@ import argparse
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import count, keep_option_defaults
+from tactcad.commands.options import check_element_option, element_number, keep_option_defaults
 from tactcad.mechanics.ladder import models
 
 
@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "cancel. Units: K, N/K, 1/K, ppm/K, W.")
     add_design_arg(p)
     add_cache_args(p)
-    p.add_argument("--element", type=count(1, 10_000, "an element number"), default=None,
+    p.add_argument("--element", type=element_number, default=None,
                    help="only this element (default: every element)")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for K and the strain per newton (default closed-form)")
@@ -43,7 +43,10 @@ def run(args: argparse.Namespace) -> int:
         return shown
     from tactcad.studies.project_reports import thermal_record
 
-    report = thermal_record(plan_from_args(args), args.model, args.element)
+    plan = plan_from_args(args)
+    if args.element is not None:
+        check_element_option(args.element, plan)
+    report = thermal_record(plan, args.model, args.element)
     if args.json:
         print(dumps(report.as_json(), indent=1))
         return 0
