@@ -194,6 +194,33 @@ def test_warnings_a_worker_job_issued_keep_their_error_for_the_runs_closing_line
                            f"error up to {100 * max(errors[1:]):.1f} %"]
 
 
+def test_a_worker_job_that_raises_says_its_warnings_before_its_error(monkeypatch):
+    """A job that warned in the worker and then raised lost its warnings (the run's
+    process said the error alone, where the same job run in the process says both)."""
+    import pickle
+    import types
+    import warnings
+    from concurrent.futures import Future
+
+    from tactcad.commands.notices import WarningLines
+    from tactcad.export import worker
+
+    def make(run):
+        warnings.warn("the gauge's grid is wider than the sheet")
+        raise ValueError("the drawing does not fit its sheet")
+
+    job = types.SimpleNamespace(needs=(), key="k", make=make)
+    monkeypatch.setattr(worker, "_INHERITED", {"run": None, "jobs": {"j": job}})
+    with pytest.raises(ValueError) as raised:
+        worker._run_job("j", pickle.dumps({}))
+    future: Future = Future()
+    future.set_exception(pickle.loads(pickle.dumps(raised.value)))  # as the pool sends it
+    notes = WarningLines(echo=False)
+    with notes.capture(), pytest.raises(ValueError, match="does not fit its sheet"):
+        worker._JobFuture(future, lambda line: None).result()
+    assert notes.lines == ["the gauge's grid is wider than the sheet"]
+
+
 @pytest.mark.slow
 def test_a_planner_that_cannot_be_sent_leaves_the_run_to_itself(tmp_path):
     """A session worker is told each run's planner by reference: a planner

@@ -352,11 +352,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:  # with the run's seconds and job counts, as an array's export --json
         print(dumps({**record, "seconds": round(time.perf_counter() - started, 3), **jobs},
                     indent=1))
-    elif getattr(args, "quiet", False):  # `export --quiet` of a die: only what failed
-        failed = [c.line() for c in checks if not c.passed]
-        if failed:
-            print("\n".join(failed))
-    else:
+    else:  # `--quiet` says nothing on stderr; the summary is the same, as an array's
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
                      modes, fe, budget, mount, record["fem3d"]))
     return 1 if counts["failed"] else 0

@@ -101,6 +101,10 @@ def worker_jobs(todo: Sequence[Job], done: Mapping[str, Any]) -> list[Job]:
     return chosen
 
 
+#: the attribute a job's error raised in the worker carries back: (its warnings, its
+#: logged lines), which the run's process says before the error
+ISSUED_BEFORE = "issued_in_worker"
+
 class Worker:
     """The run's second process (see the module doc); :meth:`submit` hands it
     a job, :meth:`close` ends it once its jobs are done, :meth:`kill` at once
@@ -301,15 +305,21 @@ class _JobFuture:
             if self._session is not None and not isinstance(exc, NotMadeHere):
                 self._session.broken = True  # the process is gone: the next run starts one
             raise
+        except Exception as exc:  # the job's own error: what it warned and logged first
+            self._reissue(*getattr(exc, ISSUED_BEFORE, ((), ())))
+            raise
+        self._reissue(issued, logged)
+        return records
+
+    def _reissue(self, issued, logged) -> None:
         for line in logged:
             self._log(line)
         for said in issued:
             if isinstance(said, Warning):
-                warnings.warn(said, stacklevel=2)
+                warnings.warn(said, stacklevel=3)
             else:
                 message, category = said
-                warnings.warn(message, category, stacklevel=2)
-        return records
+                warnings.warn(message, category, stacklevel=3)
 
     def done(self) -> bool:
         """True once the job has finished (or failed) in the worker."""
@@ -424,5 +434,10 @@ def _run_job(name: str, handed: bytes, key: str | None = None
     _LOGGED.clear()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        records = job.make(run)
+        try:
+            records = job.make(run)
+        except Exception as exc:  # its warnings go back with it: said before the error
+            setattr(exc, ISSUED_BEFORE, ([carried_warning(w.message, w.category)
+                                          for w in caught], _LOGGED[:]))
+            raise
     return records, [carried_warning(w.message, w.category) for w in caught], _LOGGED[:]
