@@ -65,7 +65,6 @@ Units: mm, N, MPa, N/mm; strain dimensionless.
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
 from dataclasses import asdict, dataclass, field, replace
@@ -509,7 +508,8 @@ def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStr
     ``grid``: the mean strain on the grid's plane over the grid) as its
     ``grid_strain_per_N``: strength, the hard stops and the read-out then quote one
     gauge strain. Unsigned (1/N)."""
-    from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
+    from tactcad.mechanics.readout_chain import (grid_strain_per_N, readout_chain,
+                                                 unmeshed_grid_strain_per_N)
 
     chain = readout_chain(plan)
     if not is_meshed(es.model):  # a pure function of its inputs: read once per process
@@ -517,31 +517,6 @@ def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStr
             g, plan.material, chain, es.model))
     grid = grid_strain_per_N(g, plan.material, chain, es.model)["grid"]
     return replace(es, grid_strain_per_N=abs(float(grid)))
-
-
-@functools.lru_cache(maxsize=1024)
-def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
-                               model: str) -> float:
-    """The unsigned strain per newton (1/N) the gauge grid of ``chain`` reads on ``g`` at a
-    level that meshes nothing (closed form, beam): ``grid_strain_per_N``'s ``"grid"``, kept
-    per process on its (frozen) inputs, since a search reads the same element's grid strain
-    for its stops, its limits and its verification matrix.
-
-    Args:
-        g: the element (mm). material: its material (MPa). chain: the design's read-out
-            (:class:`tactcad.design.readout_section.ReadoutChain`). model: the level's name.
-
-    Returns:
-        The strain per newton (1/N, unsigned).
-
-    Raises:
-        UnknownModelError: ``model`` is not a ladder level.
-
-    Source: :func:`tactcad.mechanics.readout_chain.grid_strain_per_N`.
-    """
-    from tactcad.mechanics.readout_chain import grid_strain_per_N
-
-    return abs(float(grid_strain_per_N(g, material, chain, model)["grid"]))
 
 
 #: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.

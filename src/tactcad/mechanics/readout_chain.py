@@ -64,6 +64,7 @@ Units: mm, N, MPa, V, N/mm, V/mm, V/N; strain dimensionless.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -629,17 +630,38 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     return out
 
 
+@functools.lru_cache(maxsize=1024)
+def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
+                               model: str) -> float:
+    """The unsigned strain per newton (1/N) the gauge grid of ``chain`` reads on ``g`` at a
+    level that meshes nothing (closed form, beam): ``grid_strain_per_N``'s ``"grid"``, kept
+    per process on its (frozen) inputs, since a search reads the same element's grid strain
+    for its stops, its limits and its verification matrix.
+
+    Args:
+        g: the element (mm). material: its material (MPa). chain: the design's read-out
+            (:class:`tactcad.design.readout_section.ReadoutChain`). model: the level's name.
+
+    Returns:
+        The strain per newton (1/N, unsigned).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+
+    Source: :func:`grid_strain_per_N`.
+    """
+    return abs(float(grid_strain_per_N(g, material, chain, model)["grid"]))
+
+
 def unmeshed_force_resolution_N(plan: Plan, model: str = "closed-form") -> dict[str, float]:
     """:func:`element_force_resolution_N`'s ``"dF"`` per distinct part at a level that meshes
     nothing (closed form, beam): the same numbers, from each part's unsigned grid strain
-    kept per process (:func:`tactcad.mechanics.element_strength.unmeshed_grid_strain_per_N`;
+    kept per process (:func:`unmeshed_grid_strain_per_N`;
     the strain's sign drops out of |S|).
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
     """
-    from tactcad.mechanics.element_strength import unmeshed_grid_strain_per_N
-
     chain = readout_chain(plan)
     noise = noise_budget_V(chain)["reading"]
     return {name: force_resolution_N(chain, unmeshed_grid_strain_per_N(g, plan.material, chain,
