@@ -403,8 +403,10 @@ def estimate_crosstalk(inputs: StackInputs, model: str = "stack-beam") -> Crosst
     return CROSSTALK_LADDER.run(model, (inputs,), {}, label="stack")
 
 
-#: The level the verification matrix and the export use (both levels cost well under a second).
-VERIFY_MODEL = "stack-timoshenko"
+#: The level the verification matrix, the export and the K_obj budget use for the stacked
+#: array (both beam levels cost well under a second): the one its registration marks
+#: (:func:`~tactcad.mechanics.crosstalk_ladder.verify_level`), ``stack-timoshenko``.
+VERIFY_MODEL = verify_level("stacked")
 
 
 def verify_model(plan: Plan) -> str | None:
