@@ -343,12 +343,13 @@ def check_groups_markdown() -> str:
 def constructions_markdown() -> str:
     """The constructions (``[array] construction``), from their registry."""
     from tactcad.design.construction_registry import CONSTRUCTIONS, DEFAULT_CONSTRUCTION
-    from tactcad.mechanics.crosstalk_ladder import construction_levels
+    from tactcad.mechanics.crosstalk_ladder import construction_levels, verify_level
 
     def crosstalk(c) -> str:
         levels = ", ".join(code(n) for n in construction_levels(c.name)) or "none"
-        return levels + ("" if c.stack_crosstalk else
-                         " (`tactcad crosstalk`; no crosstalk files yet, manifest `left_out`)")
+        used = verify_level(c.name)
+        return levels + (f" (decoupling files and K_obj budget: {code(used)})" if used else
+                         " (no decoupling files, manifest `left_out`)")
 
     rows = [[code(c.name) + (" (default)" if c.name == DEFAULT_CONSTRUCTION else ""),
              text(c.summary), ", ".join(code(k) for k in c.parts), text(c.scales_to_mm),

@@ -502,25 +502,48 @@ def test_a_hysteresis_outside_its_range_is_refused_naming_the_key(ti_plan, value
     assert "readout.gauge_hysteresis_rel" in str(e.value) and "0.05" in str(e.value)
 
 
-def test_a_comb_has_no_stack_crosstalk_model_and_its_budget_says_so(ti_plan):
-    # a monolithic comb has no clamped stack: the term was printed as 0 %, as if modelled
+def test_a_combs_crosstalk_term_reads_the_combs_own_level(ti_plan):
+    # the comb's term was left out ("no stack crosstalk model"): it reads comb-beam now
     from tactcad.api import load
     from tactcad.commands.budget import render
-    from tactcad.design.construction_registry import stack_crosstalk_reason
+    from tactcad.mechanics.crosstalk_ladder import plan_crosstalk
 
     comb = load(str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")).plan
-    why = stack_crosstalk_reason(comb)
-    assert why and not stack_crosstalk_reason(ti_plan)
+    b = kb.kobj_budget(comb, (1.0, 5.0), 0.05, 5.0, points=3,
+                       force_gauge=calibration_gauge(comb))
+    r = plan_crosstalk(comb, "comb-beam")
+    for u in b.units:
+        term = u["sources"]["stack_crosstalk"]
+        assert "not_modelled" not in term and min(term["before_rel"]) > 0
+        assert np.allclose(term["after_rel"], np.array(term["before_rel"]) * r.error_estimate_rel)
+    assert b.notes["stack_crosstalk_N_per_N"] == pytest.approx(r.crosstalk_rel, rel=1e-12)
+    assert "(comb-beam)" in b.notes["stack_crosstalk_basis"]
+    assert f"{r.error_estimate_rel:.3g}" in b.notes["stack_crosstalk_basis"]
+    assert "| stack crosstalk | not modelled |" not in render(b)
+    stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3,
+                             force_gauge=calibration_gauge(ti_plan))
+    assert "(stack-timoshenko)" in stacked.notes["stack_crosstalk_basis"]
+
+
+def test_a_construction_no_crosstalk_level_describes_leaves_the_term_out(monkeypatch):
+    from tactcad.api import load
+    from tactcad.commands.budget import render
+    from tactcad.mechanics import crosstalk_ladder
+    from tactcad.mechanics.crosstalk_ladder import CROSSTALK_LEVELS, crosstalk_reason
+
+    comb = load(str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")).plan
+    monkeypatch.setattr(crosstalk_ladder, "CROSSTALK_LEVELS",  # no level describes a comb
+                        {n: lv for n, lv in CROSSTALK_LEVELS.items()
+                         if lv.construction != "monolithic-comb"})
+    why = crosstalk_reason(comb)
+    assert "monolithic-comb" in why
     b = kb.kobj_budget(comb, (1.0, 5.0), 0.05, 5.0, points=3,
                        force_gauge=calibration_gauge(comb))
     for u in b.units:
         assert u["sources"]["stack_crosstalk"]["not_modelled"] == why
         assert u["sources"]["stack_crosstalk"]["after_rel"] == [0.0] * 3  # not in the sums
-    assert b.notes["stack_crosstalk_basis"].startswith("not modelled")
+    assert b.notes["stack_crosstalk_basis"] == f"not modelled, left out of the sums: {why}"
     assert "| stack crosstalk | not modelled |" in render(b)
-    stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3,
-                             force_gauge=calibration_gauge(ti_plan))
-    assert all("not_modelled" not in u["sources"]["stack_crosstalk"] for u in stacked.units)
 
 
 def _unit_record(reference, measuring, others_rel, coplanarity_after_rel):

@@ -15,8 +15,9 @@ from tactcad.errors import DesignError
 from tactcad.mechanics.comb_crosstalk import (CHANGE_RANGES, comb_inputs, estimate_comb_beam,
                                               grid_share, spine_layout)
 from tactcad.mechanics.crosstalk_ladder import (CROSSTALK_LEVELS, CrosstalkInputError,
-                                                construction_levels, default_level, level_for,
-                                                plan_crosstalk)
+                                                construction_levels, crosstalk_reason,
+                                                default_level, level_for, plan_crosstalk,
+                                                verify_level)
 
 COMB = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"
 
@@ -44,6 +45,18 @@ def test_the_comb_has_its_own_levels_the_cheapest_first():
     assert default_level("monolithic-comb") == "comb-beam"
     assert default_level("stacked") == "stack-beam"
     assert CROSSTALK_LEVELS["comb-fem2d"].meshed and not CROSSTALK_LEVELS["comb-beam"].meshed
+
+
+def test_each_construction_is_answered_for_at_the_level_the_ladder_gives_it(comb):
+    # the export's files, the budget and the verification record read this one level
+    assert verify_level("stacked") == "stack-timoshenko"  # marked: not the stack's cheapest
+    assert verify_level("monolithic-comb") == "comb-beam"  # none marked: its cheapest
+    assert verify_level("no-such-construction") is None
+    assert crosstalk_reason(comb) == ""
+    from types import SimpleNamespace
+
+    why = crosstalk_reason(SimpleNamespace(construction="no-such-construction"))
+    assert "no-such-construction" in why and "monolithic-comb" in why
 
 
 def test_the_beam_answers_in_the_stack_results_shape(comb, inputs):

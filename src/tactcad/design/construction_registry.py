@@ -43,9 +43,6 @@ class Construction:
         scales_to_mm: the smallest row length it reaches (mm) and why, for the reference page.
         test_rigs: True when the test rigs' bracket can hold it (its plan has
             the clamp plate's mounting holes the bracket bolts to).
-        stack_crosstalk: True when the stack crosstalk model
-            (:mod:`tactcad.mechanics.stack_crosstalk`: elements coupled through
-            the clamped stack's bolts and plates) describes it.
         jaw_design: ``"module:function"`` of its search to a grasper's jaw (``design
             --jaw``: ``(targets, room, columns, base_tables, **options) -> design``); empty
             when it does not seat in a jaw.
@@ -72,7 +69,6 @@ class Construction:
     parts: tuple[str, ...]
     scales_to_mm: str = ""
     test_rigs: bool = False
-    stack_crosstalk: bool = False
     jaw_design: str = ""
     jaw_template: str = ""
     jaw_fit: str = ""
@@ -175,23 +171,12 @@ def construction_of(plan: Any) -> Construction:
     return construction(plan.construction)
 
 
-def stack_crosstalk_reason(plan: Any) -> str:
-    """"" when the stack crosstalk model describes ``plan``'s construction, else
-    why not (one sentence for the manifest and the K_obj budget)."""
-    if construction_of(plan).stack_crosstalk:
-        return ""
-    return (f"no stack crosstalk model for the construction {plan.construction}: the model "
-            "couples elements through a clamped stack's bolts and plates")
-
-
 def left_out(plan: Any) -> list[dict[str, str]]:
     """What an export of ``plan`` leaves out because its construction does not
     declare it, each as ``{"what": ..., "reason": ...}`` (the manifest's
-    ``left_out`` section; empty for the stacked array)."""
+    ``left_out`` section, with what the crosstalk ladder leaves out; empty for the
+    stacked array)."""
     made, out = construction_of(plan), []
-    if not made.stack_crosstalk:
-        out.append({"what": "crosstalk/decoupling.csv, crosstalk/decoupling.json and the K_obj "
-                            "budget's crosstalk term", "reason": stack_crosstalk_reason(plan)})
     if not made.test_rigs:
         out.append({"what": "test rigs: their scenes, parts, drawings, BOM rows and build steps",
                     "reason": f"the construction {plan.construction} has no mount for the "
@@ -224,8 +209,7 @@ register_construction(Construction(
     "tactcad.design.array_plan",
     ("element", "spacer", "clamp_plate", "gauge", "bolt"),
     "each row is as long as an element (>= 10 mm) and the stack is columns x pitch; "
-    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least", test_rigs=True,
-    stack_crosstalk=True))
+    "M2 bolts, 3 mm plates: about 60 x 14 mm at the least", test_rigs=True))
 
 register_construction(Construction(
     "monolithic-comb",

@@ -1,9 +1,12 @@
 """``crosstalk/decoupling.csv`` and ``crosstalk/decoupling.json``: the array's
 decoupling matrix for the lab's read-out software.
 
-Written from :data:`tactcad.mechanics.stack_crosstalk.VERIFY_MODEL` (the
-Timoshenko stack, well under a second for the paper's array), the level the
-verification matrix uses, so ``make export`` does not slow down. A reading
+Written for every construction a crosstalk level describes, from the level its
+registration gives the verification matrix
+(:func:`tactcad.mechanics.crosstalk_ladder.verify_level`: the Timoshenko stack for the
+stacked array, ``comb-beam`` for a monolithic comb; each well under a second), so
+``make export`` does not slow down; the JSON names the level (``model``), its error
+estimate (``error_estimate_rel``) and the units. A reading
 vector r (volts or strain of each gauge, element order of the header)
 divided by each gauge's own sensitivity (the matrix's diagonal, also written)
 gives n = r / s; the forces on the tips are D @ n (N).
@@ -68,10 +71,24 @@ def _stable(v):
 
 
 def write_crosstalk_files(plan: Plan, staging: Path, log: Callable[[str], None]) -> list[dict]:
-    """Write both files into ``staging``; their file records (``path``, ``part``, ``kind``)."""
-    from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
+    """Write both files into ``staging`` from the level of the plan's construction that
+    :func:`~tactcad.mechanics.crosstalk_ladder.verify_level` gives.
 
-    result = plan_crosstalk(plan, VERIFY_MODEL)
+    Args:
+        plan: the design's plan. staging: the export's staging folder.
+        log: takes one progress line.
+
+    Returns:
+        The two file records (``path``, ``part``, ``kind``, ``items``, ``crosstalk_rel``,
+        ``model``).
+
+    Raises:
+        DesignError: no crosstalk level describes the plan's construction
+            (:func:`~tactcad.mechanics.crosstalk_ladder.level_for`).
+    """
+    from tactcad.mechanics.crosstalk_ladder import plan_crosstalk, verify_level
+
+    result = plan_crosstalk(plan, verify_level(plan.construction))
     write_bytes_atomic(staging / CSV_NAME, decoupling_csv(result).encode("utf-8"))
     write_bytes_atomic(staging / JSON_NAME, (json.dumps(decoupling_json(plan, result), indent=1,
                                                         allow_nan=False) + "\n").encode("utf-8"))
@@ -85,13 +102,12 @@ def write_crosstalk_files(plan: Plan, staging: Path, log: Callable[[str], None])
 
 
 def crosstalk_jobs(run, before) -> list:
-    """One job writing both files; it reads only the plan. None for a
-    construction the stack crosstalk model does not describe (the manifest's
-    ``left_out`` says so)."""
-    from tactcad.design.construction_registry import stack_crosstalk_reason
+    """One job writing both files, keyed by the plan it reads; none for a construction no
+    crosstalk level describes (the manifest's ``left_out`` says so)."""
     from tactcad.export.job import Job
+    from tactcad.mechanics.crosstalk_ladder import crosstalk_reason
 
-    if stack_crosstalk_reason(run.plan):
+    if crosstalk_reason(run.plan):
         return []
 
     def make(run) -> list[dict]:

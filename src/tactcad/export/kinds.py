@@ -116,7 +116,8 @@ for _kind in (
                    part_prefix="stl", in_full_export=False, part_files="stl_part_files",
                    bom_rank=5),
         ExportKind("crosstalk", ("crosstalk",),
-                   "crosstalk/decoupling.csv and .json (the Timoshenko stack level)",
+                   "crosstalk/decoupling.csv and .json (the construction's verification "
+                   "crosstalk level: the Timoshenko stack, a comb's beam)",
                    "tactcad.export.crosstalk_files", "crosstalk_jobs")):
     register_kind(_kind)
 

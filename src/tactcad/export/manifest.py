@@ -260,12 +260,18 @@ def _strength_record(r: dict) -> dict:
 
 
 def left_out_section(plan: Plan) -> list[dict[str, str]] | None:
-    """What this export leaves out and why
-    (:func:`tactcad.design.construction_registry.left_out`); None (no section)
-    when it leaves nothing out."""
+    """What this export leaves out and why: the decoupling files and the K_obj budget's
+    crosstalk term where no crosstalk level describes the construction
+    (:func:`tactcad.mechanics.crosstalk_ladder.crosstalk_reason`), then what the
+    construction does not declare (:func:`tactcad.design.construction_registry.left_out`);
+    None (no section) when it leaves nothing out."""
     from tactcad.design.construction_registry import left_out
+    from tactcad.mechanics.crosstalk_ladder import crosstalk_reason
 
-    return left_out(plan) or None
+    why = crosstalk_reason(plan)
+    crosstalk = [{"what": "crosstalk/decoupling.csv, crosstalk/decoupling.json and the K_obj "
+                          "budget's crosstalk term", "reason": why}] if why else []
+    return [*crosstalk, *left_out(plan)] or None
 
 
 def _part_record(spec, count: int) -> dict:

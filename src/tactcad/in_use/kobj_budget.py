@@ -58,10 +58,14 @@ every K_obj of the grid, before and after the correction the lab applies):
     (the ladder's closed form); signs taken worst. Calibration measures each K (eq. 5),
     so it removes this fixed error entirely: what remains is the calibration's own
     uncertainty, source (h). After calibration (d) is 0.
-(e) stack crosstalk: the neighbours' tip forces (every tip pressed by the same body
-    travel Δ, eq. 1) times each gauge's crosstalk in newtons per newton of neighbour load
-    (S_ij / S_ii of :func:`tactcad.mechanics.stack_crosstalk.plan_crosstalk`), over each
-    element's own force on the coupled sample; after the decoupling matrix what remains is its model's error estimate times that.
+(e) stack crosstalk (the key of every construction's crosstalk term): the neighbours' tip
+    forces (every tip pressed by the same body travel Δ, eq. 1) times each gauge's crosstalk
+    in newtons per newton of neighbour load (S_ij / S_ii of
+    :func:`tactcad.mechanics.crosstalk_ladder.plan_crosstalk` at the construction's
+    :func:`~tactcad.mechanics.crosstalk_ladder.verify_level`: ``stack-timoshenko`` for the
+    stacked array, ``comb-beam`` for a monolithic comb), over each element's own force on
+    the coupled sample; after the decoupling matrix what remains is its level's error
+    estimate times that.
 (f) tissue coupling: the array's tips pressed into one half-space sample couple through
     it (:mod:`tactcad.in_use.tissue_coupling`: rigid flat punches of the design's own tip
     faces, the sample's modulus set so that one tip face alone reads K_obj, nu 0.5);
@@ -453,32 +457,43 @@ def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribu
     return Contribution(rel, np.zeros_like(rel))
 
 
-def _crosstalk(ctx: Context):
-    from tactcad.design.construction_registry import stack_crosstalk_reason
-    from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
+class CrosstalkTerm(NamedTuple):
+    """What the crosstalk term reads from the crosstalk ladder: the element numbers (matrix
+    order), each gauge's force per newton on each other tip (N/N, zero diagonal), the
+    level's error estimate (relative) and the level's name ("" where none describes the
+    construction: the term is zero and not modelled)."""
 
-    if stack_crosstalk_reason(ctx.plan):  # no model of this construction's coupling: no term
+    numbers: list
+    per_newton: np.ndarray
+    error_rel: float
+    level: str
+
+
+def _crosstalk(ctx: Context) -> CrosstalkTerm:
+    from tactcad.mechanics.crosstalk_ladder import crosstalk_reason, plan_crosstalk, verify_level
+
+    if crosstalk_reason(ctx.plan):  # no model of this construction's coupling: no term
         numbers = [s.number for s in ctx.plan.slots]
-        return numbers, np.zeros((len(numbers), len(numbers))), 0.0
-    r = plan_crosstalk(ctx.plan, VERIFY_MODEL)
+        return CrosstalkTerm(numbers, np.zeros((len(numbers), len(numbers))), 0.0, "")
+    r = plan_crosstalk(ctx.plan, verify_level(ctx.plan.construction))
     per_newton = r.sensitivity / np.diag(r.sensitivity)[:, None]  # N on gauge i per N on tip j
     np.fill_diagonal(per_newton, 0.0)
-    return r.elements, per_newton, r.error_estimate_rel
+    return CrosstalkTerm(list(r.elements), per_newton, r.error_estimate_rel, r.model)
 
 
-def _stack_crosstalk_reason(plan) -> str:
-    """Why no stack crosstalk model describes ``plan``'s construction ("" where one does)."""
-    from tactcad.design.construction_registry import stack_crosstalk_reason
+def _crosstalk_reason(plan) -> str:
+    """Why no crosstalk level describes ``plan``'s construction ("" where one does)."""
+    from tactcad.mechanics.crosstalk_ladder import crosstalk_reason
 
-    return stack_crosstalk_reason(plan) or ""
+    return crosstalk_reason(plan)
 
 
 def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(e) The neighbours' tip forces (every tip pressed by the same travel Δ, eq. 1) times
-    each gauge's crosstalk in N per N of neighbour load, a fraction of each element's own
-    force, read by the coupled inversion; after the decoupling matrix, its model's error
-    estimate of that."""
-    numbers, per_newton, error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
+    each gauge's crosstalk in N per N of neighbour load at the construction's crosstalk
+    level (:class:`CrosstalkTerm`), a fraction of each element's own force, read by the
+    coupled inversion; after the decoupling matrix, its level's error estimate of that."""
+    numbers, per_newton, error, _ = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     k = np.array([ctx.k_of(n) for n in numbers])
     # tip forces of every element at each K_obj: K_j K_obj Δ / (K_j + K_obj), shape (n, grid)
     forces = k[:, None] * op.k_obj * op.travel / (k[:, None] + op.k_obj)
@@ -1124,6 +1139,25 @@ def gauge_hysteresis(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     return Contribution(rel, rel)
 
 
+def crosstalk_basis(plan, term: CrosstalkTerm) -> str:
+    """The budget's note on its crosstalk term, naming the crosstalk level it read.
+
+    Args:
+        plan: the design's plan. term: what :func:`_crosstalk` read for it.
+
+    Returns:
+        "not modelled, left out of the sums: <why>" where no level describes the
+        construction, else the largest force a gauge reads per newton on a neighbour's tip
+        at ``term.level`` and the fraction the decoupling matrix leaves (its error estimate).
+    """
+    why = _crosstalk_reason(plan)
+    if why:
+        return f"not modelled, left out of the sums: {why}"
+    return (f"the largest force a gauge reads per newton on a neighbour's tip "
+            f"({term.level}); the decoupling matrix leaves {term.error_rel:.3g} of it (its "
+            f"error estimate)")
+
+
 class Source(NamedTuple):
     """One source of the budget: its key, its words and its function; ``unmodelled`` gives,
     for a design, why no model of the source describes its construction ("" where one
@@ -1145,7 +1179,7 @@ SOURCES = (
     Source("manufacturing_tolerance", "manufacturing tolerance", manufacturing_tolerance,
            "calibration measures each K: none remains (its error is the calibration's)"),
     Source("stack_crosstalk", "stack crosstalk", stack_crosstalk,
-           "the decoupling matrix: its model's error estimate remains", _stack_crosstalk_reason),
+           "the decoupling matrix: its model's error estimate remains", _crosstalk_reason),
     Source("tissue_coupling", "tissue coupling", tissue_coupling,
            "the coupled inversion: the coupled model's error remains"),
     Source("gauge_model", "gauge model", gauge_model,
@@ -1355,15 +1389,11 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     gauge, gauge_source = force_gauge.gauge, force_gauge.source
     need = (calibration_resolution_need(ctx, pairs, units, k_obj) if not calibrations
             else None)
-    _, per_newton, xt_error = ctx.once("crosstalk", lambda: _crosstalk(ctx))
+    crosstalk = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
-        "stack_crosstalk_N_per_N": float(np.max(np.abs(per_newton))) if per_newton.size else 0.0,
-        "stack_crosstalk_basis": (
-            f"not modelled, left out of the sums: {_stack_crosstalk_reason(plan)}"
-            if _stack_crosstalk_reason(plan) else
-            f"the largest force a gauge reads per newton on a neighbour's tip "
-            f"(stack-timoshenko); the decoupling matrix leaves {xt_error:.3g} of it (its "
-            f"error estimate)"),
+        "stack_crosstalk_N_per_N": (float(np.max(np.abs(crosstalk.per_newton)))
+                                    if crosstalk.per_newton.size else 0.0),
+        "stack_crosstalk_basis": crosstalk_basis(plan, crosstalk),
         "operating_point": f"each unit pressed until its reference carries {force_N:.4g} N "
                            f"(eq. 1); the zero terms scale as 1/force",
         "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "

@@ -37,8 +37,10 @@ class CrosstalkLevel:
     """One level of the crosstalk ladder: ``--model NAME``, its estimator
     ``function(inputs) -> CrosstalkResult`` in ``module``, its typical cost,
     whether it meshes (its results are then kept in the result store), the
-    construction it describes and ``inputs``, the ``"module:function"`` that reads
-    its inputs from a plan (``function(plan, **changes)``)."""
+    construction it describes, ``inputs``, the ``"module:function"`` that reads
+    its inputs from a plan (``function(plan, **changes)``), and ``verifies``: True
+    for the level its construction's verification record, export decoupling files
+    and K_obj budget read (:func:`verify_level`; none marked: the cheapest)."""
 
     name: str
     module: str
@@ -47,6 +49,7 @@ class CrosstalkLevel:
     meshed: bool = False
     construction: str = "stacked"
     inputs: str = "tactcad.mechanics.stack_crosstalk:stack_inputs"
+    verifies: bool = False
 
     def read_inputs(self, plan: Any, **changes: Any) -> Any:
         """The level's inputs from ``plan`` (``changes``: what its reader takes)."""
@@ -75,7 +78,7 @@ _COMB_INPUTS = "tactcad.mechanics.comb_crosstalk:comb_inputs"
 for _level in (CrosstalkLevel("stack-beam", "tactcad.mechanics.stack_crosstalk",
                               "estimate_stack_beam", "~5 ms"),
                CrosstalkLevel("stack-timoshenko", "tactcad.mechanics.stack_crosstalk",
-                              "estimate_stack_timoshenko", "~15 ms"),
+                              "estimate_stack_timoshenko", "~15 ms", verifies=True),
                CrosstalkLevel("stack-fem3d", "tactcad.mechanics.stack_fem3d",
                               "estimate_stack_fem3d", "~30 s", meshed=True),
                CrosstalkLevel("comb-beam", "tactcad.mechanics.comb_crosstalk",
@@ -108,6 +111,39 @@ def default_level(construction: str) -> str | None:
     (each level states its error estimate); None when no level describes it."""
     levels = construction_levels(construction)
     return levels[0] if levels else None
+
+
+def verify_level(construction: str) -> str | None:
+    """The level that answers for ``construction`` wherever one level stands for it: the
+    verification matrix's ``max_crosstalk_rel`` record, the export's decoupling files and
+    the K_obj budget's crosstalk term. The level its registration marks ``verifies``
+    (the stacked array's ``stack-timoshenko``), else its :func:`default_level` (a
+    comb's ``comb-beam``); None when no level describes it.
+
+    Args:
+        construction: a construction's name (``array.construction``).
+
+    Returns:
+        The level's name, or None.
+    """
+    marked = [n for n in construction_levels(construction) if CROSSTALK_LEVELS[n].verifies]
+    return marked[0] if marked else default_level(construction)
+
+
+def crosstalk_reason(plan: Any) -> str:
+    """"" when a crosstalk level describes ``plan``'s construction, else why not (one
+    sentence, for the manifest's ``left_out`` and the K_obj budget's crosstalk term).
+
+    Args:
+        plan: a design's plan (its ``construction``).
+
+    Returns:
+        The reason, or "".
+    """
+    if construction_levels(plan.construction):
+        return ""
+    return (f"no crosstalk level describes the construction {plan.construction} (the "
+            f"crosstalk ladder models {', '.join(modelled_constructions())})")
 
 
 def level_for(plan: Any, model: str | None = None) -> CrosstalkLevel:

@@ -82,7 +82,7 @@ from tactcad.mechanics.crosstalk_ladder import (CROSSTALK_LADDER, CROSSTALK_LEVE
                                                 construction_levels, crosstalk_models,
                                                 crosstalk_of, decoupling_matrix, default_level,
                                                 plan_crosstalk, register_crosstalk_level,
-                                                result_of)
+                                                result_of, verify_level)
 
 #: Shear correction factor of a rectangle (Timoshenko and Gere).
 SHEAR_FACTOR = 5.0 / 6.0
@@ -403,16 +403,17 @@ def estimate_crosstalk(inputs: StackInputs, model: str = "stack-beam") -> Crosst
     return CROSSTALK_LADDER.run(model, (inputs,), {}, label="stack")
 
 
-#: The level the verification matrix and the export use (both levels cost well under a second).
-VERIFY_MODEL = "stack-timoshenko"
+#: The level the verification matrix, the export and the K_obj budget use for the stacked
+#: array (both beam levels cost well under a second): the one its registration marks
+#: (:func:`~tactcad.mechanics.crosstalk_ladder.verify_level`), ``stack-timoshenko``.
+VERIFY_MODEL = verify_level("stacked")
 
 
 def verify_model(plan: Plan) -> str | None:
-    """The level of ``plan``'s ``max_crosstalk_rel`` record: :data:`VERIFY_MODEL` for the
-    stacked array, another construction's cheapest level (None: no level describes it)."""
-    if plan.construction == "stacked":
-        return VERIFY_MODEL
-    return default_level(plan.construction)
+    """The level of ``plan``'s ``max_crosstalk_rel`` record: its construction's
+    :func:`~tactcad.mechanics.crosstalk_ladder.verify_level` (:data:`VERIFY_MODEL` for the
+    stacked array, a comb's cheapest level; None: no level describes it)."""
+    return verify_level(plan.construction)
 
 
 def crosstalk_in_force(result: CrosstalkResult, full_scale_force_N: float,
