@@ -70,3 +70,69 @@ def test_only_kept_answers_from_the_store_and_computes_nothing(tmp_path):
         assert kept_result("a sum", lambda: 1 + 1, "inputs") == 2
         with only_kept():
             assert kept_result("a sum", lambda: 3, "inputs") == 2
+
+
+def test_at_fem3d_the_peak_stress_sequences_go_to_the_processes_after_every_k(
+        tmp_path, monkeypatch):
+    """A verification at fem3d reads each element's K and its peak stress, two sequences an
+    element: the stress ones were solved in turn after the K's side by side; now all four
+    share the cores (every K first), and at fem2d only the K's go (its stress is cheap)."""
+    import concurrent.futures
+
+    from tactcad.studies import parallel_solves
+
+    plan = load_design(EXAMPLES / "macro_array" / "macro_array.toml")
+    elements = list(plan.distinct_elements.values())[:2]
+    submitted = []
+
+    class Pool:
+        def __init__(self, workers, **kwargs):
+            self.workers = workers
+
+        def submit(self, fn, root, model, g, material, what):
+            submitted.append((model, what, g.part_name))
+            done = concurrent.futures.Future()
+            done.set_result(None)
+            return done
+
+        def shutdown(self, wait=True, cancel_futures=False):
+            pass
+
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", Pool)
+    monkeypatch.setattr(parallel_solves, "_kept", lambda *args: False)
+    lines = []
+    with keeping_results(Store(tmp_path / "store")):
+        assert solve_side_by_side("fem3d", elements, plan.material, lines.append,
+                                  peak_stress=True) == 2
+        names = [g.part_name for g in elements]
+        assert submitted == [("fem3d", "stiffness", n) for n in names] + \
+            [("fem3d", "peak stress", n) for n in names]
+        assert lines == ["fem3d: 4 solves (the K and peak stress of 2 elements) side by side "
+                         "in 2 processes"]
+        submitted.clear()
+        solve_side_by_side("fem2d", elements, plan.material, peak_stress=True)
+        assert [what for _, what, _ in submitted] == ["stiffness", "stiffness"]
+
+
+def test_a_processs_peak_stress_sequence_is_the_one_the_strength_study_reads(monkeypatch):
+    """The sequence a process solves for an element's peak stress is asked with the very
+    arguments :func:`fem_peak_stress` asks it with (so it reads it back from the store)."""
+    from tactcad.studies import parallel_solves, strength_studies
+
+    class Asked(Exception):
+        pass
+
+    calls = []
+
+    def recorded(*args, **kwargs):
+        calls.append((args, kwargs))
+        raise Asked
+    monkeypatch.setattr(strength_studies, "fem3d_convergence", recorded)
+    plan = load_design(EXAMPLES / "macro_array" / "macro_array.toml")
+    g = next(iter(plan.distinct_elements.values()))
+    with pytest.raises(Asked):
+        parallel_solves._compute(parallel_solves.PEAK_STRESS, "fem3d", g, plan.material)
+    with pytest.raises(Asked):
+        strength_studies.fem_peak_stress(g, plan.material, "fem3d")
+    assert len(calls) == 2 and calls[0] == calls[1]
+    assert calls[0][0][0] == g.bare()

@@ -1581,7 +1581,7 @@ def design_verification(plan, asked: str, margins: list[dict], progress=None
         records, levels = verification_auto(plan, progress, stress=element_stress,
                                             envelope_mm=envelope)
         return levels[-1]["model"], records
-    prefetch_top_level(plan, asked, progress)
+    prefetch_top_level(plan, asked, progress, peak_stress=True)
     return asked, verification_matrix(plan, asked, progress, stress=element_stress,
                                       envelope_mm=envelope)
 

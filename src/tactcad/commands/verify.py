@@ -55,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
         records, levels = verification_auto(plan, progress, req, stress=element_stress,
                                             envelope_mm=envelope)
     else:
-        prefetch_top_level(plan, args.model, progress)
+        prefetch_top_level(plan, args.model, progress, peak_stress=True)
         records, levels = verification_matrix(plan, args.model, progress, req,
                                               stress=element_stress, envelope_mm=envelope), []
     ok = matrix_passed(records)

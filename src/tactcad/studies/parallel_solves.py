@@ -35,29 +35,44 @@ def _start() -> None:
         pass
 
 
-def _solve(root: str, model: str, geometry: Any, material: Any) -> None:
+#: What one process solves of an element: its K at the level (the sequence with its gauge's
+#: layer, :func:`tactcad.mechanics.ladder.estimate`) or the sequence its peak stress is read
+#: from (the bare element's, :func:`tactcad.studies.strength_studies.peak_stress_sequence`).
+STIFFNESS, PEAK_STRESS = "stiffness", "peak stress"
+
+
+def _compute(what: str, model: str, geometry: Any, material: Any) -> None:
+    if what == PEAK_STRESS:
+        from tactcad.studies.strength_studies import peak_stress_sequence
+
+        peak_stress_sequence(geometry, material, model)
+    else:
+        from tactcad.mechanics.ladder import estimate
+
+        estimate(model, geometry, material)
+
+
+def _solve(root: str, model: str, geometry: Any, material: Any, what: str = STIFFNESS) -> None:
     import warnings
 
-    from tactcad.mechanics.ladder import estimate
     from tactcad.store import Store, keeping_results
 
     with warnings.catch_warnings():  # the command warns once, when it reads the result
         warnings.simplefilter("ignore")
         with keeping_results(Store(Path(root))):
-            estimate(model, geometry, material)
+            _compute(what, model, geometry, material)
 
 
-def _kept(model: str, geometry: Any, material: Any) -> bool:
-    """Whether the active store holds ``geometry``'s estimate at ``model`` (nothing solved)."""
+def _kept(model: str, geometry: Any, material: Any, what: str = STIFFNESS) -> bool:
+    """Whether the active store holds ``what`` of ``geometry`` at ``model`` (nothing solved)."""
     import warnings
 
-    from tactcad.mechanics.ladder import estimate
     from tactcad.store import NotKept, only_kept
 
     try:
         with warnings.catch_warnings(), only_kept():
             warnings.simplefilter("ignore")
-            estimate(model, geometry, material)
+            _compute(what, model, geometry, material)
     except NotKept:
         return False
     return True
@@ -73,10 +88,21 @@ def top_of_the_ladder(model: str) -> bool:
 
 
 def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
-                       progress=None) -> int:
+                       progress=None, peak_stress: bool = False) -> int:
     """Solve ``geometries`` at ``model`` in up to as many processes as cores, into the
     active store; the number of processes used (0: nothing prefetched, see the module doc).
-    A failed or killed process is not an error: its element is solved later, here."""
+    A failed or killed process is not an error: its element is solved later, here.
+
+    Args:
+        model: the ladder level. geometries: the elements (mm). material: their material.
+        progress: takes one line naming what is solved side by side.
+        peak_stress: also each element's peak-stress sequence (:data:`PEAK_STRESS`; fem3d
+            only), which a verification at the level reads beside K: four solves of two
+            elements share the cores where the two stress sequences ran in turn after.
+
+    Returns:
+        The number of processes used.
+    """
     from concurrent.futures import ProcessPoolExecutor, wait
     import multiprocessing
 
@@ -88,12 +114,14 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
     if (store is None or store.root is None or cores < 2 or len(geometries) < 2
             or os.environ.get("TACTCAD_WORKERS", "1") == "0"):  # one process asked for
         return 0
-    geometries = [g for g in geometries if not _kept(model, g, material)]
-    if len(geometries) < 2:  # one left is solved here, as soon
+    whats = (STIFFNESS, PEAK_STRESS) if peak_stress and model == "fem3d" else (STIFFNESS,)
+    tasks = [(what, g) for what in whats for g in geometries
+             if not _kept(model, g, material, what)]  # every K first: the matrix reads K first
+    if len(tasks) < 2:  # one left is solved here, as soon
         return 0
-    n = min(cores, len(geometries))
+    n = min(cores, len(tasks))
     if progress:
-        progress(f"{model}: {len(geometries)} elements solved side by side in {n} processes")
+        progress(f"{model}: {solves_text(tasks)} side by side in {n} processes")
     spawn_ready()
     try:
         with stop_signals_held():
@@ -102,9 +130,19 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
     except OSError:  # no process to be had: each is solved here, in turn
         return 0
     try:
-        wait([pool.submit(_solve, str(store.root), model, g, material) for g in geometries])
+        wait([pool.submit(_solve, str(store.root), model, g, material, what)
+              for what, g in tasks])
     except BaseException:  # a stop: the processes' solves are not waited for
         pool_shut_down(pool, kill=True)
         raise
     pool_shut_down(pool)
     return n
+
+
+def solves_text(tasks: Sequence[tuple[str, Any]]) -> str:
+    """What is solved side by side, in words: "2 elements solved" for their K alone, else
+    "4 solves (the K and peak stress of 2 elements)"."""
+    elements = len({id(g) for _, g in tasks})
+    if all(what == STIFFNESS for what, _ in tasks):
+        return f"{len(tasks)} elements solved"
+    return f"{len(tasks)} solves (the K and peak stress of {elements} elements)"

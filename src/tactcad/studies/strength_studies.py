@@ -65,15 +65,39 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
                                   lambda: _fem2d_peaks(g, material, divisions, levels),
                                   g, material, divisions, levels)
     else:  # the bare element's mesh sequence (the stiffness level's, without the layer)
-        conv = fem3d_convergence(g, material, levels=levels,
-                                 web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
-        sols, peaks = conv.solutions, conv.peaks
+        sols, peaks = peak_stress_sequence(installed, material, model, web_divisions, levels)
     rich = richardson([p.per_newton_MPa_per_N for p in peaks], REFINEMENT_RATIO)
     fin = sols[-1]
     from tactcad.mechanics.ladder import estimate
 
     k = estimate(model, installed, material).stiffness_N_per_mm  # K in use, with the gauge
     return ElementStress(model, rich.extrapolated, rich.error_rel, k, peaks[-1].location_mm)
+
+
+def peak_stress_sequence(g: ElementGeometry, material: Material, model: str = "fem3d",
+                         web_divisions: float | None = None, levels: int = 3):
+    """The fem3d mesh sequence :func:`fem_peak_stress` reads the hinge's peak from: the bare
+    element's (its gauge's layer left off), kept in the result store, so a process solving
+    it beside the command (:mod:`tactcad.studies.parallel_solves`) hands it over.
+
+    Args:
+        g: the element as installed (mm); its bare twin is meshed. material: E, nu (MPa).
+        model: "fem3d" (the one level with a 3D sequence).
+        web_divisions: finest neck size = web / web_divisions (default
+            :data:`STRESS_WEB_DIVISIONS_3D`).
+        levels: number of meshes (>= 3).
+
+    Returns:
+        (the solves without their fields, each mesh's peak at the hinge), coarsest first.
+
+    Raises:
+        ValueError: ``model`` is not fem3d.
+    """
+    if model != "fem3d":
+        raise ValueError(f"model must be fem3d for the 3D peak-stress sequence; got {model!r}")
+    conv = fem3d_convergence(g.bare(), material, levels=levels,
+                             web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
+    return conv.solutions, conv.peaks
 
 
 def _fem2d_peaks(g: ElementGeometry, material: Material, web_divisions: float, levels: int):

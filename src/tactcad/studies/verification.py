@@ -1120,17 +1120,19 @@ def least_footprint_mm(envelope_mm: Sequence[float], axes: int = 2,
 LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
                "max_crosstalk_rel", GRID_POWER_REQUIREMENT)
 
-def prefetch_top_level(plan: Plan, model: str, progress: Callable[[str], None] | None = None
-                       ) -> int:
+def prefetch_top_level(plan: Plan, model: str, progress: Callable[[str], None] | None = None,
+                       peak_stress: bool = False) -> int:
     """At the ladder's dearest level, the distinct elements not yet kept in the store solved
     side by side, one process each (:mod:`tactcad.studies.parallel_solves`), for the matrix
-    to read back; the processes used (0 at any other level, or when nothing is to solve)."""
+    to read back; with ``peak_stress`` their peak-stress sequences too (a matrix given its
+    ``stress`` reads them); the processes used (0 at any other level, or when nothing is
+    to solve)."""
     from tactcad.studies.parallel_solves import solve_side_by_side, top_of_the_ladder
 
     if not top_of_the_ladder(model):
         return 0
     return solve_side_by_side(model, list(plan.distinct_elements.values()), plan.material,
-                              progress)
+                              progress, peak_stress=peak_stress)
 
 
 def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
@@ -1166,7 +1168,7 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     for i, level in enumerate(ladder):
         open_before = [k for k in order if k not in chosen] if order else None
         t0 = time.perf_counter()
-        prefetch_top_level(plan, level, progress)
+        prefetch_top_level(plan, level, progress, peak_stress=stress is not None)
         records = verification_matrix(plan, level, progress, req, stress, envelope_mm)
         spent.append({"model": level, "seconds": time.perf_counter() - t0,
                       "undecided_before": open_before})
