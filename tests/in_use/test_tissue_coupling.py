@@ -98,6 +98,82 @@ def test_tips_are_the_designs_own_faces_and_positions():
         assert p.x_mm == pytest.approx(slot.tip_centre_world_mm[0])
 
 
+@pytest.mark.parametrize("design", [TI, "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"])
+def test_each_tip_face_is_the_faces_footprint_on_the_sample_turned_with_its_element(design):
+    """A comb's elements are quarter-turned (their sheets across the jaw): their faces were
+    laid on the sample unturned, the tip's 1 mm width across the rows 0.9 mm apart, so the
+    two rows' faces overlapped, the tips' compliance was no compliance and a written design's
+    budget, check, verify and export failed "a travel whose contact set settles"."""
+    plan = load_design(design)
+    _, punches = tip_punches(plan)
+    for slot, p in zip(plan.slots, punches):
+        g, place = slot.geometry, slot.placement
+        w, b = g.contact_face_mm
+        corners = [place.apply(g.tip_centre_x_mm + sx * w / 2, g.tip_top_y_mm, sz * b)
+                   for sx in (-1, 1) for sz in (0, 1)]
+        xs, zs = [c[0] for c in corners], [c[2] for c in corners]
+        assert p.width_x_mm == pytest.approx(max(xs) - min(xs))
+        assert p.depth_z_mm == pytest.approx(max(zs) - min(zs))
+        assert (p.x_mm, p.z_mm) == pytest.approx(((max(xs) + min(xs)) / 2, (max(zs) + min(zs)) / 2))
+    coupled = coupled_sample(plan)
+    assert np.all(np.linalg.eigvalsh(coupled.normalised) > 0)  # a compliance
+    # the grasp's tips and the array evaluation's read the same faces
+    from tactcad.in_use.grasp_experiment import _punches
+    from tactcad.mechanics.evaluation import elements_from_plan
+
+    assert _punches(plan) == list(punches)
+    k = {s.number: 1.0 for s in plan.slots}
+    assert [e.punch for e in elements_from_plan(plan, k)] == list(punches)
+
+
+def test_overlapping_tip_faces_are_refused_naming_their_elements():
+    punches = [Punch(-0.45, 0.0, 1.0, 0.5), Punch(0.45, 0.0, 1.0, 0.5), Punch(0.0, 3.0, 1.0, 0.5)]
+    with pytest.raises(ContactError, match="elements 1 and 2") as info:
+        coupled_sample_from_punches((1, 2, 3), punches)
+    assert info.value.field == "tip faces"
+    touching = [Punch(-0.5, 0.0, 1.0, 0.5), Punch(0.5, 0.0, 1.0, 0.5)]  # edge to edge: apart
+    assert coupled_sample_from_punches((1, 2), touching).normalised.shape == (2, 2)
+
+
+def test_the_contact_set_is_the_complementarity_solution_where_single_changes_would_cycle():
+    """The one-change active set is backed by NNLS: on random compliant systems the forces
+    meet the complementarity conditions that enumerating every contact set finds."""
+    import itertools
+    import types
+
+    from tactcad.in_use import tissue_coupling
+
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        n = 6
+        m = rng.standard_normal((n, n))
+        normalised = m @ m.T / n + np.eye(n) * 0.05
+        k = rng.uniform(1.0, 30.0, n)
+        heights = rng.uniform(-0.05, 0.05, n)
+        system = np.diag(1.0 / k) + normalised
+        load = 0.01 + heights
+        best = None
+        for mask in itertools.product((0, 1), repeat=n):
+            active = np.array(mask, bool)
+            f = tissue_coupling._forces_on(system, load, active)
+            gap = system @ f - load
+            if f.min() >= -1e-12 and gap[~active].min(initial=0.0) >= -1e-12:
+                best = f
+        assert best is not None
+        sample = types.SimpleNamespace(normalised=normalised)
+        assert tissue_coupling.contact_forces(sample, k, heights, 1.0, 0.01) == \
+            pytest.approx(best, abs=1e-12)
+        assert tissue_coupling._settled_by_nnls(system, load, 0.01) == pytest.approx(best, abs=1e-12)
+
+
+def test_a_system_that_is_no_compliance_is_a_contact_error_not_a_crash():
+    from tactcad.in_use import tissue_coupling
+
+    system = np.array([[1.0, 2.0], [2.0, 1.0]])  # indefinite
+    with pytest.raises(ContactError, match="not positive definite"):
+        tissue_coupling._settled_by_nnls(system, np.array([0.01, 0.02]), 0.01)
+
+
 def test_a_measured_ratio_outside_the_model_is_refused_by_name():
     sample = two_tips(4.0)
     with pytest.raises(ContactError, match="R = 50"):

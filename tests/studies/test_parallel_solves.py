@@ -117,6 +117,7 @@ def test_at_fem3d_the_peak_stress_sequences_go_to_the_processes_after_every_k(
 def test_a_processs_peak_stress_sequence_is_the_one_the_strength_study_reads(monkeypatch):
     """The sequence a process solves for an element's peak stress is asked with the very
     arguments :func:`fem_peak_stress` asks it with (so it reads it back from the store)."""
+    import tactcad.mechanics.fem.fem3d as fem3d
     from tactcad.studies import parallel_solves, strength_studies
 
     class Asked(Exception):
@@ -127,7 +128,7 @@ def test_a_processs_peak_stress_sequence_is_the_one_the_strength_study_reads(mon
     def recorded(*args, **kwargs):
         calls.append((args, kwargs))
         raise Asked
-    monkeypatch.setattr(strength_studies, "fem3d_convergence", recorded)
+    monkeypatch.setattr(fem3d, "fem3d_convergence", recorded)
     plan = load_design(EXAMPLES / "macro_array" / "macro_array.toml")
     g = next(iter(plan.distinct_elements.values()))
     with pytest.raises(Asked):

@@ -201,6 +201,14 @@ class ElementSlot:
         g = self.geometry
         return self.placement.apply(g.tip_centre_x_mm, g.tip_top_y_mm, g.sheet_thickness_mm / 2)
 
+    @property
+    def contact_face_world_mm(self) -> tuple[float, float]:
+        """(extent along the world's x, along its z) of the tip's contact face (mm): the
+        element's ``contact_face_mm`` (width along its x, the sheet along its z) turned with
+        it, so a quarter-turned element (a comb's rows) lays its sheet along x."""
+        w, d = self.geometry.contact_face_mm
+        return (d, w) if self.placement.quarter_turn else (w, d)
+
 
 @dataclass(frozen=True)
 class Plan:

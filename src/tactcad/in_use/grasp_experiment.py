@@ -268,7 +268,7 @@ def _punches(plan: Plan) -> list[Punch]:
     out = []
     for slot in plan.slots:
         x, _, z = slot.tip_centre_world_mm
-        out.append(Punch(x, z, *slot.geometry.contact_face_mm))
+        out.append(Punch(x, z, *slot.contact_face_world_mm))
     return out
 
 

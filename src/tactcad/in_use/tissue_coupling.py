@@ -103,12 +103,13 @@ def tip_punches(plan) -> tuple[tuple[int, ...], tuple[Punch, ...]]:
     """Element numbers and their contact faces as punches on the sample plane (x, z) (mm).
 
     The face is centred on ``slot.tip_centre_world_mm``; its size is
-    ``slot.geometry.contact_face_mm`` (width along x, depth along z, the sheet).
+    ``slot.contact_face_world_mm`` (the element's face turned with it: a quarter-turned
+    element, a comb's rows, has its sheet along the sample's x and its tip's width along z).
     """
     numbers, punches = [], []
     for slot in plan.slots:
         x, _, z = slot.tip_centre_world_mm
-        w, d = slot.geometry.contact_face_mm
+        w, d = slot.contact_face_world_mm
         numbers.append(int(slot.number))
         punches.append(Punch(float(x), float(z), float(w), float(d)))
     return tuple(numbers), tuple(punches)
@@ -149,11 +150,28 @@ def coupled_sample_from_punches(numbers: Sequence[int], punches: Sequence[Punch]
     """:class:`CoupledSample` of the given punches (see the module docstring).
 
     Raises:
-        ContactError: bad punches or tissue.
+        ContactError: bad punches or tissue; two faces overlap (the punch solution holds
+            separate faces only), named by their elements.
     """
+    _refuse_overlapping_faces(numbers, punches)
     face = indenter_face(tissue, punches)
     normalised, error = _normalised_compliance(tuple(punches), tissue, face)
     return CoupledSample(tuple(int(n) for n in numbers), normalised.copy(), tissue, face, error)
+
+
+def _refuse_overlapping_faces(numbers: Sequence[int], punches: Sequence[Punch]) -> None:
+    """Raise :class:`ContactError` naming the first two elements whose contact faces overlap
+    on the sample plane by more than round-off (faces that only touch are allowed)."""
+    for i, a in enumerate(punches):
+        for j in range(i + 1, len(punches)):
+            b = punches[j]
+            gap_x = abs(a.x_mm - b.x_mm) - (a.width_x_mm + b.width_x_mm) / 2
+            gap_z = abs(a.z_mm - b.z_mm) - (a.depth_z_mm + b.depth_z_mm) / 2
+            if gap_x < -1e-9 and gap_z < -1e-9:
+                raise ContactError(
+                    "tip faces", f"elements {numbers[i]} and {numbers[j]}",
+                    "contact faces apart on the sample (these overlap by "
+                    f"{-gap_x:.4g} x {-gap_z:.4g} mm)")
 
 
 def indenter_face(tissue: Tissue, punches: Sequence[Punch]) -> tuple[float, float]:
@@ -425,17 +443,23 @@ def contact_forces(sample: CoupledSample, k: np.ndarray, heights_mm: np.ndarray,
     complementarity problem, solved by active set: the most negative force leaves, the
     deepest penetration joins, until neither remains).
 
+    The one-change-at-a-time active set can cycle where a row of equal tips and a
+    recessed one trade places (a comb of twelve tips, one 0.02 mm proud, one recessed);
+    the problem is then solved as the bound-constrained least squares it is equivalent to
+    (the system is symmetric positive definite: min 1/2 P^T A P - q^T P over P >= 0 is
+    min ||L^T P - L^-1 q|| with A = L L^T; Lawson and Hanson's NNLS, which terminates),
+    and its contact set solved as above.
+
     Raises:
-        ContactError: the active set does not settle (never seen; named with the travel).
+        ContactError: no contact set satisfies the complementarity conditions to round-off
+            (named with the travel).
     """
     n = len(k)
     system = np.diag(1.0 / k) + sample.normalised / k_obj
+    load = travel_mm + heights_mm
     active = np.ones(n, bool)
     for _ in range(4 * n + 4):
-        force = np.zeros(n)
-        idx = np.flatnonzero(active)
-        if idx.size:
-            force[idx] = np.linalg.solve(system[np.ix_(idx, idx)], travel_mm + heights_mm[idx])
+        force = _forces_on(system, load, active)
         penetration = np.where(active, -np.inf,
                                travel_mm + heights_mm - sample.normalised @ force / k_obj)
         if force.min() < 0.0:
@@ -444,7 +468,40 @@ def contact_forces(sample: CoupledSample, k: np.ndarray, heights_mm: np.ndarray,
             active[int(np.argmax(penetration))] = True
         else:
             return force
-    raise ContactError("travel_mm", travel_mm, "a travel whose contact set settles")
+    return _settled_by_nnls(system, load, travel_mm)
+
+
+def _forces_on(system: np.ndarray, load: np.ndarray, active: np.ndarray) -> np.ndarray:
+    """Forces (N) with the ``active`` tips in contact (the others carry none)."""
+    force = np.zeros(len(load))
+    idx = np.flatnonzero(active)
+    if idx.size:
+        force[idx] = np.linalg.solve(system[np.ix_(idx, idx)], load[idx])
+    return force
+
+
+def _settled_by_nnls(system: np.ndarray, load: np.ndarray, travel_mm: float) -> np.ndarray:
+    """:func:`contact_forces`' problem solved as non-negative least squares (scipy's NNLS),
+    its contact set then solved exactly.
+
+    Raises:
+        ContactError: the result breaks a complementarity condition beyond round-off.
+    """
+    from scipy.linalg import cholesky, solve_triangular
+    from scipy.optimize import nnls
+
+    try:
+        lower = cholesky(0.5 * (system + system.T), lower=True)
+    except np.linalg.LinAlgError:  # not a compliance: no contact problem to solve
+        raise ContactError("travel_mm", travel_mm, "a travel whose contact set settles (the "
+                           "tips' compliance is not positive definite)") from None
+    guess, _ = nnls(lower.T, solve_triangular(lower, load, lower=True))
+    force = _forces_on(system, load, guess > 0.0)
+    gap = system @ force - load  # >= 0 where clear, 0 in contact
+    scale = float(np.max(np.abs(load))) or 1.0
+    if force.min() < -1e-12 * max(float(force.max()), 1e-300) or gap.min() < -1e-9 * scale:
+        raise ContactError("travel_mm", travel_mm, "a travel whose contact set settles")
+    return np.maximum(force, 0.0)
 
 
 def offset_ratio(sample: CoupledSample, stiffness: Mapping[int, float], unit: tuple[int, int],

@@ -519,6 +519,35 @@ def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStr
     return replace(es, grid_strain_per_N=abs(float(grid)))
 
 
+def peak_stress_sequence(g: ElementGeometry, material: Material, model: str = "fem3d",
+                         web_divisions: float | None = None, levels: int = 3):
+    """The fem3d mesh sequence :func:`fem_peak_stress` reads the hinge's peak from: the bare
+    element's (its gauge's layer left off), kept in the result store, so a process solving
+    it beside the command (:mod:`tactcad.studies.parallel_solves`) hands it over.
+    Read by :func:`tactcad.studies.strength_studies.fem_peak_stress`.
+
+    Args:
+        g: the element as installed (mm); its bare twin is meshed. material: E, nu (MPa).
+        model: "fem3d" (the one level with a 3D sequence).
+        web_divisions: finest neck size = web / web_divisions (default
+            :data:`STRESS_WEB_DIVISIONS_3D`).
+        levels: number of meshes (>= 3).
+
+    Returns:
+        (the solves without their fields, each mesh's peak at the hinge), coarsest first.
+
+    Raises:
+        ValueError: ``model`` is not fem3d.
+    """
+    if model != "fem3d":
+        raise ValueError(f"model must be fem3d for the 3D peak-stress sequence; got {model!r}")
+    from tactcad.mechanics.fem.fem3d import fem3d_convergence
+
+    conv = fem3d_convergence(g.bare(), material, levels=levels,
+                             web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
+    return conv.solutions, conv.peaks
+
+
 #: Evaluates one element's peak stress at a model: (geometry, material, model) -> ElementStress.
 StressModel = Callable[[ElementGeometry, Material, str], ElementStress]
 

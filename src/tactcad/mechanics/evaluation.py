@@ -95,12 +95,12 @@ def elements_from_plan(plan, stiffness_N_per_mm: dict[int, float]) -> tuple[Arra
     """Array elements at the plan's tip positions with the given stiffness per element number.
 
     The contact face lies in the world (x, z) plane, centred on
-    ``slot.tip_centre_world_mm`` with ``slot.geometry.contact_face_mm``.
+    ``slot.tip_centre_world_mm`` with ``slot.contact_face_world_mm`` (turned with the element).
     """
     out = []
     for slot in plan.slots:
         x, _, z = slot.tip_centre_world_mm
-        w, d = slot.geometry.contact_face_mm
+        w, d = slot.contact_face_world_mm
         out.append(ArrayElement(slot.number, float(stiffness_N_per_mm[slot.number]),
                                 Punch(x, z, w, d)))
     return tuple(out)

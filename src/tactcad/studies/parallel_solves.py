@@ -37,13 +37,13 @@ def _start() -> None:
 
 #: What one process solves of an element: its K at the level (the sequence with its gauge's
 #: layer, :func:`tactcad.mechanics.ladder.estimate`) or the sequence its peak stress is read
-#: from (the bare element's, :func:`tactcad.studies.strength_studies.peak_stress_sequence`).
+#: from (the bare element's, :func:`tactcad.mechanics.element_strength.peak_stress_sequence`).
 STIFFNESS, PEAK_STRESS = "stiffness", "peak stress"
 
 
 def _compute(what: str, model: str, geometry: Any, material: Any) -> None:
     if what == PEAK_STRESS:
-        from tactcad.studies.strength_studies import peak_stress_sequence
+        from tactcad.mechanics.element_strength import peak_stress_sequence
 
         peak_stress_sequence(geometry, material, model)
     else:

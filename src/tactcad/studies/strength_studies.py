@@ -18,14 +18,14 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.mechanics.fem.fem2d import (REFINEMENT_RATIO, richardson, single_threaded_blas,
                                         size_factors, solve_fem2d)
-from tactcad.mechanics.fem.fem3d import fem3d_convergence
 from tactcad.mechanics.fem.fields import peak_notch_stress
 from tactcad.mechanics.fem.fem_mesh import fem_region
 from tactcad.mechanics.ladder import is_meshed, meshed_models, models
 from tactcad.mechanics.element_strength import (KT_FIT_GEOMETRIES,
                                         STRESS_WEB_DIVISIONS_2D, STRESS_WEB_DIVISIONS_3D,
                                         ElementStress, ReferenceLoad, StrengthRecord,
-                                        closed_form_stress, nominal_stress_per_newton)
+                                        closed_form_stress, nominal_stress_per_newton,
+                                        peak_stress_sequence)
 from tactcad.mechanics.element_strength import plan_strength as _plan_strength
 from tactcad.store import kept_result
 
@@ -72,32 +72,6 @@ def fem_peak_stress(g: ElementGeometry, material: Material, model: str = "fem2d"
 
     k = estimate(model, installed, material).stiffness_N_per_mm  # K in use, with the gauge
     return ElementStress(model, rich.extrapolated, rich.error_rel, k, peaks[-1].location_mm)
-
-
-def peak_stress_sequence(g: ElementGeometry, material: Material, model: str = "fem3d",
-                         web_divisions: float | None = None, levels: int = 3):
-    """The fem3d mesh sequence :func:`fem_peak_stress` reads the hinge's peak from: the bare
-    element's (its gauge's layer left off), kept in the result store, so a process solving
-    it beside the command (:mod:`tactcad.studies.parallel_solves`) hands it over.
-
-    Args:
-        g: the element as installed (mm); its bare twin is meshed. material: E, nu (MPa).
-        model: "fem3d" (the one level with a 3D sequence).
-        web_divisions: finest neck size = web / web_divisions (default
-            :data:`STRESS_WEB_DIVISIONS_3D`).
-        levels: number of meshes (>= 3).
-
-    Returns:
-        (the solves without their fields, each mesh's peak at the hinge), coarsest first.
-
-    Raises:
-        ValueError: ``model`` is not fem3d.
-    """
-    if model != "fem3d":
-        raise ValueError(f"model must be fem3d for the 3D peak-stress sequence; got {model!r}")
-    conv = fem3d_convergence(g.bare(), material, levels=levels,
-                             web_divisions=web_divisions or STRESS_WEB_DIVISIONS_3D)
-    return conv.solutions, conv.peaks
 
 
 def _fem2d_peaks(g: ElementGeometry, material: Material, web_divisions: float, levels: int):
