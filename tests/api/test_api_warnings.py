@@ -141,3 +141,25 @@ def test_a_result_kept_per_process_warns_again_on_every_call():
         value, said = caught(lambda: warned(3))
         assert value == 6 and [str(w.message) for w in said] == ["said of 3"]
     assert runs == [3]
+
+
+@pytest.mark.parametrize("method, command", [("readout", "readout"), ("budget", "budget"),
+                                             ("crosstalk", "crosstalk"),
+                                             ("strength", "strength"), ("modes", "modal")])
+def test_a_record_is_the_json_the_command_prints_with_its_keys(method, command, capsys):
+    """Plain dicts and lists (no tuple), and a ``warnings`` list even when empty, as the
+    command's ``--json`` writes them."""
+    import json
+
+    from tactcad.cli import main
+
+    design = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+    record = getattr(tactcad.load(design), method)()
+    assert json.loads(json.dumps(record)) == record
+    capsys.readouterr()
+    try:
+        main([command, "--design", str(design), "--json"])
+    except SystemExit:
+        pass
+    printed = json.loads(capsys.readouterr().out)
+    assert set(record) == set(printed) and "warnings" in record
