@@ -390,3 +390,24 @@ def test_comb_records_are_the_same_whether_pairs_short_by_strength_wait_or_not(m
     weighed = evaluate_batch(atlas, points)
     assert any(set_aside) and {r["binding_limit"] for r in waiting} == {"", "stop", "force"}
     assert json.dumps(waiting, sort_keys=True) == json.dumps(weighed, sort_keys=True)
+
+
+def test_a_comb_points_f1_is_the_first_frequency_modal_reports_with_the_gauge(capsys):
+    """``f1_Hz`` is ``tactcad modal --json``'s ``lowest_first_Hz`` (the elements with their
+    gauge installations' mass), not the bare element's."""
+    from pathlib import Path
+
+    import tactcad
+    from tactcad.cli import main
+    from tactcad.studies.design_atlas import plan_figures
+
+    design = Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_10mm" / \
+        "grasper_jaw_10mm.toml"
+    from tactcad.assembly.inventory import array_envelope_mm
+
+    f1 = plan_figures(tactcad.load(design).plan, array_envelope_mm)["f1_Hz"]
+    capsys.readouterr()
+    main(["modal", "--design", str(design), "--json"])
+    modal = json.loads(capsys.readouterr().out)
+    assert f1 == pytest.approx(modal["lowest_first_Hz"], rel=1e-12)
+    assert all(f1 < e["bare_first_Hz"] for e in modal["elements"] if e.get("bare_first_Hz"))
