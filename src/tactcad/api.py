@@ -58,9 +58,9 @@ def plain(value: Any) -> Any:
         value: a result (dicts, lists, tuples, numbers, NumPy values, text, None).
 
     Returns:
-        The same structure with no NumPy type left and every infinite or NaN number None,
-        as the command's JSON writes it (tuples stay tuples; objects, such as a
-        dataclass, as they are).
+        The same structure with no NumPy type left, every infinite or NaN number None and
+        every tuple a list, as the command's JSON writes them (a named tuple and other
+        objects, such as a dataclass, as they are).
     """
     import math
 
@@ -70,8 +70,8 @@ def plain(value: Any) -> Any:
         return {plain(k): plain(v) for k, v in value.items()}
     if isinstance(value, list):
         return [plain(v) for v in value]
-    if type(value) is tuple:  # a named tuple or another tuple type is left as it is
-        return tuple(plain(v) for v in value)
+    if type(value) is tuple:  # as JSON writes it; a named tuple is left as it is
+        return [plain(v) for v in value]
     if isinstance(value, np.ndarray):
         return plain(value.tolist())
     if isinstance(value, np.generic):
@@ -144,8 +144,8 @@ _API_CALL: "ContextVar[bool]" = ContextVar("tactcad_api_call", default=False)
 
 def with_warnings(result: Any, said: Sequence[str]) -> tuple[Any, list[str]]:
     """``result`` with the warnings ``said`` during its call joined to its own, each once:
-    a dict's ``warnings`` list (made where it has none, as ``--json`` adds it to the
-    command's object), a dataclass's ``warnings`` field.
+    a dict's ``warnings`` list (made where it has none, empty where none was said, as
+    ``--json`` adds it to the command's object), a dataclass's ``warnings`` field.
 
     Args:
         result: an API method's plain result.
@@ -156,13 +156,13 @@ def with_warnings(result: Any, said: Sequence[str]) -> tuple[Any, list[str]]:
     """
     import dataclasses
 
-    if not said:
-        return result, []
     if isinstance(result, dict):
         own = result.get("warnings", [])
         if isinstance(own, list):
             return {**result, "warnings": own + [w for w in said if w not in own]}, []
-    elif dataclasses.is_dataclass(result) and not isinstance(result, type):
+    if not said:
+        return result, []
+    if dataclasses.is_dataclass(result) and not isinstance(result, type):
         field = {f.name: f for f in dataclasses.fields(result)}.get("warnings")
         own = getattr(result, "warnings", None)
         if field is not None and field.init and isinstance(own, (tuple, list)):

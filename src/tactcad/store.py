@@ -420,3 +420,64 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
         store.remember(key, value)
     memory[key] = value
     return value
+
+
+@dataclass(frozen=True)
+class _SaidWarning:
+    """One warning a kept computation issued: what :func:`warnings.warn_explicit` takes."""
+
+    message: Warning | str
+    category: type[Warning]
+    filename: str
+    lineno: int
+
+
+def _issued_while(compute: Callable[[], T]) -> tuple[T, tuple[_SaidWarning, ...]]:
+    """``compute()`` with every warning it issued (each one, none filtered out)."""
+    import warnings
+
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        value = compute()
+    return value, tuple(_SaidWarning(w.message, w.category, w.filename, w.lineno)
+                        for w in said)
+
+
+def _say_again(said: Sequence[_SaidWarning]) -> None:
+    """Issue ``said`` in order, as their computation first issued them: each goes through
+    the caller's filters again, with no registry, so none is taken as already shown."""
+    import warnings
+
+    for w in said:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, registry={})
+
+
+def kept_per_process(maxsize: int = 128) -> Callable[[Callable[..., T]], Callable[..., T]]:
+    """A function's results kept per process on its (hashable) arguments, as
+    :func:`functools.lru_cache` keeps them, with the warnings each computation issued: a
+    call that finds its result kept issues them again, so every call warns alike (a
+    command's or the API's ``warnings`` list is the same on the first call of a process
+    and on every later one).
+
+    Args:
+        maxsize: how many results are kept (the least recently used go first).
+
+    Returns:
+        The decorator; the decorated function keeps ``cache_clear`` and ``cache_info``.
+    """
+    def decorate(function: Callable[..., T]) -> Callable[..., T]:
+        @functools.lru_cache(maxsize=maxsize)
+        def computed(*args: Any, **kwargs: Any) -> tuple[T, tuple[_SaidWarning, ...]]:
+            return _issued_while(lambda: function(*args, **kwargs))
+
+        @functools.wraps(function)
+        def called(*args: Any, **kwargs: Any) -> T:
+            value, said = computed(*args, **kwargs)
+            _say_again(said)
+            return value
+
+        called.cache_clear = computed.cache_clear  # type: ignore[attr-defined]
+        called.cache_info = computed.cache_info  # type: ignore[attr-defined]
+        return called
+
+    return decorate

@@ -101,3 +101,65 @@ def test_a_refusal_after_warnings_says_them_first_from_the_callers_line():
     assert refused.value.field == "force_N"
     assert [str(w.message) for w in said] == ["beyond the fit: error 2.7 %"]
     assert said[0].filename == __file__
+
+
+@pytest.mark.parametrize("method, command", [("tolerance", "tolerance"),
+                                             ("strength", "strength"),
+                                             ("crosstalk", "crosstalk")])
+def test_every_call_warns_alike_and_as_the_commands_json(method, command, capsys):
+    """A result kept in the process from an earlier call (the design's requirements, its
+    grid strain) says the warnings its computation said, each call."""
+    import json
+
+    from tactcad.cli import main
+
+    design = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+    first = getattr(tactcad.load(design, set=THIN_WEB), method)()["warnings"]
+    again = getattr(tactcad.load(design, set=THIN_WEB), method)()["warnings"]
+    assert first == again and first, (first, again)
+    capsys.readouterr()
+    try:
+        main([command, "--design", str(design), "--set",
+              f"element.web_thickness_mm={THIN_WEB['element.web_thickness_mm']}", "--json"])
+    except SystemExit:
+        pass
+    assert json.loads(capsys.readouterr().out)["warnings"] == first
+
+
+def test_a_result_kept_per_process_warns_again_on_every_call():
+    from tactcad.store import kept_per_process
+
+    runs = []
+
+    @kept_per_process(maxsize=4)
+    def warned(x):
+        runs.append(x)
+        warnings.warn(f"said of {x}")
+        return 2 * x
+
+    for _ in range(2):
+        value, said = caught(lambda: warned(3))
+        assert value == 6 and [str(w.message) for w in said] == ["said of 3"]
+    assert runs == [3]
+
+
+@pytest.mark.parametrize("method, command", [("readout", "readout"), ("budget", "budget"),
+                                             ("crosstalk", "crosstalk"),
+                                             ("strength", "strength"), ("modes", "modal")])
+def test_a_record_is_the_json_the_command_prints_with_its_keys(method, command, capsys):
+    """Plain dicts and lists (no tuple), and a ``warnings`` list even when empty, as the
+    command's ``--json`` writes them."""
+    import json
+
+    from tactcad.cli import main
+
+    design = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
+    record = getattr(tactcad.load(design), method)()
+    assert json.loads(json.dumps(record)) == record
+    capsys.readouterr()
+    try:
+        main([command, "--design", str(design), "--json"])
+    except SystemExit:
+        pass
+    printed = json.loads(capsys.readouterr().out)
+    assert set(record) == set(printed) and "warnings" in record

@@ -186,19 +186,20 @@ def agrees_with_design(record: dict, tmp_path) -> None:
 
 def written_die_figures(design_file) -> dict:
     """The figures of the die ``design`` wrote, re-planned from its file as ``tactcad die``
-    plans it (the atlas's own figure functions on that plan)."""
+    plans it (the atlas's own figure functions on that plan; the largest rating as
+    ``tactcad strength --json`` reports it)."""
     import argparse
     from pathlib import Path
 
+    import tactcad
     from tactcad.commands.die import _die_args, die_asked, plan_of
-    from tactcad.products.silicon_die.design.mems_die import rating_limits
     from tactcad.products.silicon_die.mechanics.die_dynamics import first_resonance_Hz
     from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
 
     args = _die_args(Path(design_file), argparse.Namespace(overrides=[]), Path("."))
     plan = plan_of(die_asked(args)).plan
     return {"kobj_resolution_rel": worst_readout_error_rel(plan),
-            "max_force_N": min(force for force, _ in rating_limits(plan)),
+            "max_force_N": tactcad.load(design_file).strength()["largest_rating_N"],
             "f1_Hz": min(first_resonance_Hz(plan, b) for b in plan.beams),
             "layer_um": plan.stack.device_um}
 
@@ -390,3 +391,45 @@ def test_comb_records_are_the_same_whether_pairs_short_by_strength_wait_or_not(m
     weighed = evaluate_batch(atlas, points)
     assert any(set_aside) and {r["binding_limit"] for r in waiting} == {"", "stop", "force"}
     assert json.dumps(waiting, sort_keys=True) == json.dumps(weighed, sort_keys=True)
+
+
+def test_a_comb_points_f1_is_the_first_frequency_modal_reports_with_the_gauge(capsys):
+    """``f1_Hz`` is ``tactcad modal --json``'s ``lowest_first_Hz`` (the elements with their
+    gauge installations' mass), not the bare element's."""
+    from pathlib import Path
+
+    import tactcad
+    from tactcad.cli import main
+    from tactcad.studies.design_atlas import plan_figures
+
+    design = Path(__file__).resolve().parents[2] / "hardware" / "grasper_jaw_10mm" / \
+        "grasper_jaw_10mm.toml"
+    from tactcad.assembly.inventory import array_envelope_mm
+
+    f1 = plan_figures(tactcad.load(design).plan, array_envelope_mm)["f1_Hz"]
+    capsys.readouterr()
+    main(["modal", "--design", str(design), "--json"])
+    modal = json.loads(capsys.readouterr().out)
+    assert f1 == pytest.approx(modal["lowest_first_Hz"], rel=1e-12)
+    assert all(f1 < e["bare_first_Hz"] for e in modal["elements"] if e.get("bare_first_Hz"))
+
+
+def test_a_die_points_max_force_is_the_largest_rating_strength_reports_on_its_file(tmp_path):
+    """``max_force_N`` of a die is the least of its rating limits (an on-stop failure
+    probability may bind before the in-use one ``verify`` names): ``tactcad strength
+    --json``'s ``largest_rating_N`` on the die ``design`` writes, and the API's."""
+    import tactcad
+
+    atlas = jaw_atlas("5", [(DIE, SILICON)])
+    point = {"point": 0, "kr_over_km": 7.7252, "kobj_lo_N_per_mm": 1.07717,
+             "kobj_hi_N_per_mm": 3.73352, "full_scale_force_N": 0.00905571, "columns": 8}
+    record = evaluate_batch(atlas, [point])[0]
+    assert record["feasible"], record
+    code, _ = design_verdict(record, tmp_path)
+    assert code == 0
+    written = tmp_path / record["command"].rsplit(" ", 1)[-1]
+    printed = run_cli("strength", "--design", written, "--json")
+    strength = json.loads(printed.stdout)
+    assert strength["largest_rating_N"] == pytest.approx(record["max_force_N"], rel=1e-12)
+    assert "on its deepest stop" in strength["largest_rating_binds"]
+    assert tactcad.load(written).strength()["largest_rating_N"] == strength["largest_rating_N"]

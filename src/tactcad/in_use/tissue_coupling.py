@@ -34,7 +34,6 @@ Units: mm, N, MPa, N/mm; R and κ dimensionless.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence
@@ -44,7 +43,7 @@ import numpy as np
 from tactcad.mechanics.contact import (CONVERGED_REL, ContactError, Punch, Sample, check_sample,
                                        converged_punches)
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
-from tactcad.store import kept_result
+from tactcad.store import kept_per_process, kept_result
 
 #: Soft tissue and rubber phantoms are nearly incompressible (an assumption the user can change).
 TISSUE_POISSON_RATIO = 0.5
@@ -181,7 +180,7 @@ def indenter_face(tissue: Tissue, punches: Sequence[Punch]) -> tuple[float, floa
     return float(face[0]), float(face[1])
 
 
-@functools.lru_cache(maxsize=32)
+@kept_per_process(maxsize=32)
 def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
                            face: tuple[float, float]) -> tuple[np.ndarray, float]:
     """(Ĉ of the punches, its mesh error), converged in the mesh

@@ -52,6 +52,7 @@ from typing import Sequence
 
 import numpy as np
 
+from tactcad.store import kept_per_process
 from tactcad.errors import TactcadError
 
 #: Largest cell edge the boundary-element mesh aims for (mm): the cosine-graded cells of a
@@ -1071,7 +1072,7 @@ def single_punch_unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_r
                                        poisson_ratio, thickness_mm, base)[0, 0])
 
 
-@functools.lru_cache(maxsize=64)
+@kept_per_process(maxsize=64)
 def _converged_unit(punches: tuple[Punch, ...], poisson_ratio: float,
                     thickness_mm: float | None, base: str) -> ConvergedPunches:
     return converged_punches(punches, Sample(1.0, poisson_ratio, thickness_mm, base))

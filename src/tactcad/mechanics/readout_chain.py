@@ -64,13 +64,13 @@ Units: mm, N, MPa, V, N/mm, V/mm, V/N; strain dimensionless.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
+from tactcad.store import kept_per_process
 from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.design.readout_section import ReadoutChain, readout_of
 from tactcad.mechanics.ladder import is_meshed
@@ -630,7 +630,7 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     return out
 
 
-@functools.lru_cache(maxsize=1024)
+@kept_per_process(maxsize=1024)
 def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
                                model: str) -> float:
     """The unsigned strain per newton (1/N) the gauge grid of ``chain`` reads on ``g`` at a

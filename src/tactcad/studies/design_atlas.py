@@ -406,19 +406,20 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
 
     Returns:
         ``kobj_resolution_rel`` and ``max_force_N`` (N) as its verification matrix predicts
-        them (what ``verify`` reads at the closed form), and ``f1_Hz``, the lowest first
-        natural frequency of its elements (Hz; Rayleigh's quotient,
-        :func:`tactcad.mechanics.modal_closed_form.estimate_modal_closed_form`).
+        them (what ``verify`` reads at the closed form: ``max_force_N`` is the predicted
+        figure of its ``full_scale_force_N`` row, the force the binding limit allows), and
+        ``f1_Hz``, the lowest first
+        natural frequency of its elements with their gauge installations' mass (Hz;
+        Rayleigh's quotient, ``tactcad modal --json``'s ``lowest_first_Hz`` at the closed
+        form: :func:`tactcad.studies.project_reports.modes_record`).
     """
-    from tactcad.mechanics.modal_closed_form import estimate_modal_closed_form
+    from tactcad.studies.project_reports import modes_record
     from tactcad.studies.verification import verification_matrix
 
     env = envelope_of(plan) if envelope_of is not None else None
     predicted = {r["requirement"]: r["predicted"]
                  for r in verification_matrix(plan, "closed-form", envelope_mm=env)}
-    parts = {slot.geometry.part_name: slot.geometry for slot in plan.slots}
-    f1 = min(estimate_modal_closed_form(g, plan.material).modes[0].frequency_Hz
-             for g in parts.values())
+    f1 = modes_record(plan, "closed-form", modes=1)[0]["lowest_first_Hz"]
     return {"kobj_resolution_rel": float(predicted.get("kobj_resolution_rel", math.nan)),
             "max_force_N": float(predicted.get("full_scale_force_N", math.nan)),
             "f1_Hz": float(f1)}
@@ -427,7 +428,11 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
 def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
     """A feasible die's figures, as design plans it; design's verdict otherwise: its K_obj
     resolution (relative, the read-out noise term), the largest rating its limits allow
-    (N), its beams' lowest first resonance (Hz) and its SOI device layer (um).
+    (``max_force_N``, N: the least of
+    :func:`~tactcad.products.silicon_die.design.mems_die.rating_limits`, in use and on its
+    stops, what ``tactcad strength --json`` reports as ``largest_rating_N`` on the written
+    die), its beams' lowest first resonance (Hz, ``tactcad modal``'s) and its SOI device
+    layer (um).
 
     Raises:
         RefusedPoint: the die's own refusal.

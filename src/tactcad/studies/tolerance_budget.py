@@ -20,11 +20,11 @@ Units: mm, relative for the modulus and the band.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import replace
 from typing import Callable
 
+from tactcad.store import kept_per_process
 from tactcad.vocabulary.rounding import round_down
 from tactcad.design.array_plan import Plan
 from tactcad.mechanics.correction import Correction, load_correction
@@ -54,7 +54,7 @@ def contributions(plan: Plan, tol: Tolerances, correction: Correction | None = N
     return {name: dict(c) for name, c in out.items()}
 
 
-@functools.lru_cache(maxsize=256)
+@kept_per_process(maxsize=256)
 def _part_contributions(parts: tuple, m, tol: Tolerances, corr: Correction
                         ) -> dict[str, dict[str, float]]:
     # contributions' work, on its hashable inputs (each caller copies the answer)

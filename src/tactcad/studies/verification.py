@@ -35,13 +35,13 @@ Units: mm, N, MPa, N/mm.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from tactcad.store import kept_per_process
 from tactcad.vocabulary.rounding import clean as _clean, round_down, round_up
 from tactcad.design.array_plan import Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper,
@@ -425,7 +425,7 @@ def requirements_of(plan: Plan, figures: Figures | None = None,
     return _requirements_from(plan, figures, k_band, units, kept)
 
 
-@functools.lru_cache(maxsize=8)
+@kept_per_process(maxsize=8)
 def _plan_requirements(plan: Plan) -> Requirements:
     """:func:`requirements_of` without figures, kept per plan (the plan's design hash is
     part of its equality, so an edited design is another entry)."""
@@ -602,7 +602,7 @@ def calibration_gauge(plan: Plan):
                                    f"k_sensor_N_per_mm overrides it", force)
 
 
-@functools.lru_cache(maxsize=8)
+@kept_per_process(maxsize=8)
 def catalogue_calibration_gauge(plan: Plan) -> tuple[Any, str]:
     """The catalogue force gauge a design without rigs is calibrated on: of those whose range
     holds the largest force the calibration reads (the rated full-scale force, or the force
