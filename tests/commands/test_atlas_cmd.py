@@ -529,3 +529,25 @@ def test_ctrl_c_during_a_real_atlas_ends_130_without_a_traceback_or_litter(tmp_p
     assert "(stopped: the points that finished are kept)" in stdout
     assert {f.name for f in out.iterdir()} == ATLAS_FILES
     assert list(scratch.iterdir()) == []  # Dask's scratch space went with its cluster
+
+
+def test_a_local_cluster_that_does_not_start_is_a_refusal_not_a_traceback(
+        monkeypatch, tmp_path, capsys):
+    """A user whose Dask workers cannot start (`Nanny failed to start`) got Dask's traceback
+    and exit 1 (the code of a failed check): the run refuses, naming the cluster and what
+    to paste instead, and leaves no folder."""
+    import distributed
+
+    from tactcad import cli
+
+    def refuse(*args, **kwargs):
+        raise RuntimeError("Nanny failed to start.")
+    monkeypatch.setattr(distributed, "LocalCluster", refuse)
+    monkeypatch.chdir(tmp_path)
+    code = cli.main(["atlas", "--jaw", "5", "--points", "2", "--no-cache", "--json"])
+    out = capsys.readouterr()
+    error = json.loads(out.out)["error"]
+    assert code in (2, 3) and error["exit_code"] == code
+    assert "did not start (RuntimeError: Nanny failed to start.)" in error["message"]
+    assert "--scheduler ADDRESS" in error["message"] and "Traceback" not in out.err
+    assert not (tmp_path / "exports").exists()

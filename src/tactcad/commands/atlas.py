@@ -60,7 +60,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                             "it for the review page")
     p.add_argument("--points", type=count(1, 100_000, "target points"), default=16,
                    metavar="N", help="target points of the Sobol sample (default %(default)s; "
-                                     "a comb's point costs seconds per material)")
+                                     "a comb's point costs a fraction of a CPU second per material)")
     p.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
                    help="seed of the sample's scramble (default %(default)s)")
     p.add_argument("--material", type=material_grade_name, action="append", default=None,

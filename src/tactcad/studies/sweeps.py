@@ -200,6 +200,8 @@ def whole_local_cluster(workers: int, threads_per_worker: int,
 
     Raises:
         KeyboardInterrupt: a stop held while the cluster started, once it is closed again.
+        ClusterError: the cluster did not start (a worker's nanny failed: no process, no
+            socket or no writable folder to be had), with Dask's reason.
     """
     from distributed import Client, LocalCluster
 
@@ -209,10 +211,16 @@ def whole_local_cluster(workers: int, threads_per_worker: int,
     try:
         # the workers are Dask's processes: their start-up does not unblock the signals
         with stop_signals_held(block_in_children=False):
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker,
-                                   processes=True, dashboard_address=None,
-                                   local_directory=scratch, silence_logs=DASK_LOG_LEVEL)
-            client = Client(cluster)
+            try:
+                cluster = LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker,
+                                       processes=True, dashboard_address=None,
+                                       local_directory=scratch, silence_logs=DASK_LOG_LEVEL)
+                client = Client(cluster)
+            except Exception as exc:  # Dask's own failures are of many types
+                raise ClusterError(
+                    f"a local Dask cluster of {workers} worker process(es) did not start "
+                    f"({type(exc).__name__}: {str(exc)[:200]}); `--scheduler ADDRESS` runs "
+                    "on a Dask cluster started apart") from None
         yield client
     finally:
         with stop_signals_held(block_in_children=False):
