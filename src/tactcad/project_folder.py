@@ -231,16 +231,19 @@ def _check_target(folder: Path, names: list[str], force: bool, option: str = "DI
             or (folder.exists() and not os.access(folder, os.W_OK | os.X_OK)):
         raise DesignError(option, str(folder), "a folder this user can write, in an existing folder",
                           f"{parent} is not one")
-    clashes = [n for n in names if (folder / n).exists()]
-    if clashes and not force:
-        raise DesignError(option, str(folder), "a folder without the project's files, or --force",
-                          f"it has {', '.join(sorted(clashes))} already")
+    # another design file first: --force replaces this design's files, never another's, so
+    # offering it first sent a lab to a second refusal
     others = sorted(p.name for p in (designs_in(folder) + other_product_designs_in(folder)
                                      if folder.is_dir() else []) if p.name not in names)
     if others:  # two design files: every command without --design would refuse the folder
         raise DesignError(option, str(folder), "a folder without another design file",
                           f"it holds {', '.join(others)}; a project folder holds one design "
-                          "(move it away, or choose another folder)")
+                          "(move it away, or choose another folder; --force replaces this "
+                          "design's own files only)")
+    clashes = [n for n in names if (folder / n).exists()]
+    if clashes and not force:
+        raise DesignError(option, str(folder), "a folder without the project's files, or --force",
+                          f"it has {', '.join(sorted(clashes))} already")
 
 
 def check_project_target(folder: Path, design_name: str, force: bool,

@@ -150,6 +150,20 @@ def test_a_folder_with_the_projects_files_is_refused_and_a_git_repository_is_not
     assert not list(tmp_path.glob(".repo.staging-*"))
 
 
+def test_a_renamed_project_folder_is_refused_once_for_its_other_design_not_for_force(tmp_path):
+    """A project copied to a new name and designed into offered --force, which then refused
+    for the other design file: the first refusal names the design file to move away."""
+    from tactcad.project_folder import check_project_target
+
+    new_project(tmp_path / "ti6")
+    shutil.copytree(tmp_path / "ti6", tmp_path / "ti6b")
+    for force in (False, True):
+        with pytest.raises(DesignError) as info:
+            check_project_target(tmp_path / "ti6b", "ti6b.toml", force)
+        assert info.value.allowed == "a folder without another design file"
+        assert "it holds ti6.toml" in str(info.value) and "move it away" in str(info.value)
+
+
 def test_without_design_a_command_takes_the_project_folders_one_design(tmp_path, monkeypatch):
     assert default_design(tmp_path) == DEFAULT_DESIGN
     made = new_project(tmp_path / "p")
