@@ -1327,8 +1327,8 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
     """The option :func:`comb_for_jaw`'s refusal names when no candidate of ``tried``
     counts, found as it finds it but without the force it offers to paste: ``--jaw`` where
     the pocket holds no sheet's comb (:func:`nearest_jaw`), ``--full-scale-force`` where some
-    candidate carries a force, ``--columns`` where fewer columns count
-    (:func:`fewer_columns_carry`), else ``--full-scale-force``.
+    candidate carries a force, ``--columns`` where another column count counts or carries
+    one (:func:`fewer_columns_carry`), else ``--full-scale-force``.
 
     Args:
         base: the tables as searched (:func:`comb_candidates`' first value).
@@ -1348,23 +1348,24 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
 
 def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
                         grade: str | None, envelope_of: Callable | None) -> bool:
-    """Whether :func:`nearest_columns` finds an answer (it is not None): some count below
-    ``columns`` has a candidate that counts or carries some force. Stops at the first such
-    candidate instead of bisecting the force it would carry: the refusal's option alone.
+    """Whether :func:`nearest_columns` finds an answer (it is not None): some count other
+    than ``columns`` (fewer first, then more: :func:`other_column_counts`) has a candidate
+    that counts or carries some force. Stops at the first such candidate instead of
+    bisecting the force it would carry: the refusal's option alone.
 
     Args:
         base, columns, room, targets, grade, envelope_of: as :func:`nearest_columns`.
 
     Returns:
-        True when a fewer-column comb counts or is rated for some force.
+        True when a comb of another column count counts or is rated for some force.
     """
 
     scales = stop_fitting_scales(targets)  # the others carry at no column count
     with candidates_weighed():
-        for fewer in range(columns - 1, 0, -1):
+        for count in sum(other_column_counts(columns), ()):
             for sheet in sheets_of(base):
                 for scale in scales:
-                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                    c = candidate(base, sheet, scale, count, room, targets, grade,
                                   envelope_of, None)
                     if (c.plan is not None and not c.failures) or c.rated_force_N:
                         return True
@@ -2126,37 +2127,60 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
             f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}", alternatives)
 
 
+def other_column_counts(columns: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """The column counts a refusal offers instead of ``columns``, in the order it tries
+    them: (fewer, most first; more, fewest first), each within
+    :data:`tactcad.design.array_plan.COLUMNS_RANGE`. A shorter pitch leaves shorter arms,
+    so a comb too soft at its longest arms counts with more columns.
+
+    Args:
+        columns: the columns asked (1 ... 12).
+
+    Returns:
+        (the counts below ``columns``, the counts above it).
+    """
+    from tactcad.design.array_plan import COLUMNS_RANGE
+
+    lo, hi = COLUMNS_RANGE
+    return tuple(range(columns - 1, lo - 1, -1)), tuple(range(columns + 1, hi + 1))
+
+
 def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
                     envelope_of: Callable | None) -> tuple[int, float | None] | None:
     """The most columns below ``columns`` whose comb counts in ``room``: (columns, None);
     else the most whose comb carries some smaller force, with that force (N: the search's
     frontier from the candidates' best rating, :func:`largest_comb_force`, over the sheets
-    and K_m scales that rated, so that the force pasted designs); None when no count below
-    ``columns`` carries any. Asked when no sheet's comb of ``columns`` has a plan (the
-    pitch or the arms bind before any force is judged)."""
+    and K_m scales that rated, so that the force pasted designs). Where no count below
+    ``columns`` carries any force, the fewest columns above it that count or carry one
+    (:func:`other_column_counts`), found the same way; None when no count does. Asked
+    when no sheet's comb of ``columns`` has a plan or a rating (the pitch, the arms or the
+    webs bind before any force is judged)."""
 
     carrying: tuple[int, float, list, dict] | None = None
     scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
+    fewer_counts, more_counts = other_column_counts(columns)
     with candidates_weighed():
-        for fewer in range(columns - 1, 0, -1):
+        for count in fewer_counts + more_counts:
+            if carrying is not None and count > columns:
+                break  # fewer columns carry a force: the nearer change is offered
             rated, judged = [], []
             for sheet in sheets_of(base):
                 for scale in scales:
-                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                    c = candidate(base, sheet, scale, count, room, targets, grade,
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:
-                        return fewer, None
+                        return count, None
                     judged.append(c)
                     rated += [(c.rated_force_N, sheet, scale)] if c.rated_force_N else []
             if rated and carrying is None:
                 best = sorted(rated, reverse=True)
-                carrying = (fewer, best[0][0], [(sheet, scale) for _, sheet, scale in best],
+                carrying = (count, best[0][0], [(sheet, scale) for _, sheet, scale in best],
                             bounds_of(judged))
     if carrying is None:
         return None
-    fewer, estimate, order, bounds = carrying
-    return fewer, largest_comb_force(estimate, lambda force: comb_counts(
-        base, force, fewer, room, targets, grade, envelope_of, order, bounds))
+    count, estimate, order, bounds = carrying
+    return count, largest_comb_force(estimate, lambda force: comb_counts(
+        base, force, count, room, targets, grade, envelope_of, order, bounds))
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
@@ -2167,7 +2191,8 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     ``frontier_N``, :func:`largest_comb_force`, else the candidates' best rating less 1 %)
     or, when the pocket binds every sheet, the nearest jaw (``jaw``, :func:`nearest_jaw`'s
     line and alternatives: no force helps then); when the grid binds before any force, the
-    most columns that count (``fewer_columns``, :func:`nearest_columns`)."""
+    nearest column count that counts or carries a force (``fewer_columns``, fewer first,
+    then more: :func:`nearest_columns`)."""
     jaw_line, jaw_alternatives = jaw
     lines = []
     for sheet in sorted({c.sheet_mm for c in tried}):  # each sheet's nearest: most margin
@@ -2193,13 +2218,14 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     if not nearest and fewer_columns is not None:
         fewer, force = fewer_columns
         nearest, option, value = f"--columns {fewer}", "--columns", columns
-        words = "the most columns whose comb counts in this jaw"
+        which = "most" if fewer < columns else "fewest"
+        words = f"the {which} columns whose comb counts in this jaw"
         if force is not None:
             nearest += f" --full-scale-force {force:.3g}"
-            words = ("the most columns whose comb carries a force in this jaw, and the "
+            words = (f"the {which} columns whose comb carries a force in this jaw, and the "
                      "largest force it carries")
     if not nearest:  # say why there is nothing to paste
-        text += (f"\n  none to paste: no comb of 1 ... {columns} columns on these sheets "
+        text += ("\n  none to paste: no comb of any column count on these sheets "
                  "carries any force in this jaw (each sheet's binding limit above)")
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
                               option, value, nearest or "a design the jaw holds",
