@@ -291,6 +291,21 @@ def test_a_grasp_beyond_the_jaws_reach_is_refused_by_its_option(tmp_path):
     assert r.returncode == 2 and "--max-grasp-force" in r.stderr and "only with --jaw" in r.stderr
 
 
+@pytest.mark.slow  # a comb search and its grasps, twice
+def test_a_grasp_beyond_the_jaws_reach_offers_the_most_it_reaches_which_designs(tmp_path):
+    """The jaw closed flat on its slab puts 53.78 N on the preferred comb: a 100 N grasp is
+    refused with that grasp rounded down to three digits to paste, and its limit code."""
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--max-grasp-force", "100", "--out", str(tmp_path / "x.toml"), "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "--max-grasp-force" and error["limit"] == "strength"
+    assert [a["option"] for a in error["alternatives"]] == ["--max-grasp-force 53.7"]
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--max-grasp-force", "53.7", "--out", str(tmp_path / "y.toml"))
+    assert r.returncode == 0, r.stderr
+
+
 @pytest.mark.parametrize("option, value, limit", [("--kobj-range", ["1000", "20000"], "10000"),
                                                   ("--kr-over-km", ["2000"], "1000"),
                                                   ("--full-scale-force", ["2000"], "1000")])

@@ -1586,25 +1586,91 @@ def surviving(good: list[CombCandidate], grasp_N: float, room: Any,
     only the candidates that count otherwise are grasped.
 
     Raises:
-        InverseDesignError: none survives; names the nearest one's binding limit.
+        InverseDesignError: none survives; names the nearest one's binding limit and its
+            code (``limit``), and, where the grasp is out of the jaw's reach, the nearest
+            grasp in reach that a candidate survives (:func:`grasp_in_reach`).
     """
     nearest = None
     for c in in_preference(good):
-        d = copy_tables(c.data)
-        d["requirements"]["max_grasp_force_N"] = float(grasp_N)
-        d["grasper_jaw"] = dict(room.table or {})
-        plan, fails, margin, rated = judge(d, envelope_of, room)
+        d = grasped_tables(c.data, grasp_N, room)
+        plan, fails, codes, margin, rated = judge_limits(d, envelope_of, room)
         if plan is not None and not fails:
             return replace(c, data=d, plan=plan, force_margin_rel=margin, rated_force_N=rated)
-        nearest = nearest or fails
+        nearest = nearest or (fails, codes)
+    fails, codes = nearest or (("?",), ())
     lo, hi = targets.k_obj_range_N_per_mm
     text = (f"no monolithic comb of 2 x {columns} for the {room.label} (K_r/K_m "
             f"{targets.kr_over_km:g}, K_obj {lo:g} ... {hi:g} N/mm at "
             f"{targets.full_scale_force_N:g} N) survives a {grasp_N:g} N grasp "
             f"(--max-grasp-force): of the "
-            f"{len(good)} that count, the first binds on {(nearest or ('?',))[0]}")
-    raise InverseDesignError(text, "--max-grasp-force", grasp_N,
-                             "a grasp the comb's hard stops hold")
+            f"{len(good)} that count, the first binds on {fails[0]}")
+    pasted = grasp_in_reach(good, grasp_N, room, envelope_of, targets)
+    if pasted is None:
+        text += "\n  none to paste: no comb that counts survives a grasp in its jaw's reach"
+    refused = InverseDesignError(
+        text + (f"\n  nearest: --max-grasp-force {pasted:.3g}" if pasted else ""),
+        "--max-grasp-force", grasp_N, "a grasp the comb's hard stops hold",
+        alternatives=[{"option": f"--max-grasp-force {pasted:.3g}",
+                       "words": "the nearest grasp in the jaw's reach that the comb "
+                                "survives"}] if pasted else [])
+    refused.limit = codes[0] if codes else ""
+    raise refused
+
+
+def grasped_tables(data: Mapping[str, Any] | None, grasp_N: float, room: Any) -> dict:
+    """A candidate's tables (``data``: a counting candidate's, never None) asked to survive a
+    grasp of ``grasp_N`` (N) in the jaw of ``room`` (its ``[grasper_jaw]`` table)."""
+    d = copy_tables(data)
+    d["requirements"]["max_grasp_force_N"] = float(grasp_N)
+    d["grasper_jaw"] = dict(room.table or {})
+    return d
+
+
+#: How many candidates :func:`grasp_in_reach` judges at the grasp it would offer before it
+#: offers none: each is a grasp's contact solve, and the first in reach nearly always holds.
+GRASP_REACH_TRIES = 3
+
+
+def grasp_in_reach(good: list[CombCandidate], grasp_N: float, room: Any,
+                   envelope_of: Callable | None, targets: Targets) -> float | None:
+    """The grasp (N) a refusal of ``grasp_N`` offers when that grasp is out of the jaw's
+    reach: for the candidates in :func:`in_preference`'s order whose reach
+    (:func:`tactcad.in_use.grasp_experiment.design_grasp_reach_N`, the jaw open to closed
+    flat on its slab) leaves ``grasp_N`` out, the end of that reach nearest it, to three
+    significant digits inward (down from above, up from below) so that it is in reach; the
+    first such grasp the candidate then survives (:func:`judge_limits`), after at most
+    :data:`GRASP_REACH_TRIES` tries.
+
+    Args:
+        good: the candidates that count. grasp_N: the grasp asked (N). room, envelope_of,
+            targets: as :func:`surviving` takes them.
+
+    Returns:
+        The grasp to paste (N), or None when the asked one is in every candidate's reach
+        (an overload binds, not the reach) or none tried survives its own.
+    """
+    from tactcad.in_use.grasp_experiment import design_grasp_reach_N
+    from tactcad.vocabulary.rounding import round_down, round_up
+
+    tries = 0
+    for c in in_preference(good):
+        # the jaw's own table in the plan: its grasp is in this jaw, not a default one
+        plan = plan_from_dict(grasped_tables(c.data, grasp_N, room))
+        least, largest = design_grasp_reach_N(plan, targets.full_scale_force_N,
+                                              targets.k_obj_range_N_per_mm)
+        if least <= grasp_N <= largest:
+            continue
+        paste = round_down(largest, 3) if grasp_N > largest else round_up(least, 3)
+        if not least <= paste <= largest:
+            continue
+        plan, fails, _, _, _ = judge_limits(grasped_tables(c.data, paste, room), envelope_of,
+                                            room)
+        if plan is not None and not fails:
+            return paste
+        tries += 1
+        if tries >= GRASP_REACH_TRIES:
+            break
+    return None
 
 
 def centred_km(targets: Targets) -> float:
