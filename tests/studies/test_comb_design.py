@@ -678,3 +678,15 @@ def test_a_comb_too_soft_at_its_fewest_columns_offers_the_fewest_more_that_desig
     pasted = comb_for_jaw(targets, jaw_room("10"), 3, BASE, grade=TI,
                           envelope_of=array_envelope_mm)
     assert pasted.plan.columns == 3
+
+
+def test_a_pitch_too_short_for_the_measuring_arm_says_the_arm_it_needs():
+    """Seven columns leave a 2.3 mm measuring arm, longer than the 2 mm reference's yet
+    short of the 2.5 mm the search needs: the refusal's numbers say so."""
+    with pytest.raises(InverseDesignError) as caught:
+        comb_for_jaw(Targets(10.0, (0.5, 5.0), 0.05), jaw_room("10"), 7, BASE, grade=TI,
+                     envelope_of=array_envelope_mm)
+    text = str(caught.value)
+    assert "leaves a measuring arm of 2.3 mm, short of the 2.5 mm it needs (0.5 mm longer " \
+           "than the reference's 2 mm)" in text
+    assert "not longer than" not in text

@@ -423,6 +423,13 @@ def pocket_for_length_mm(d: Mapping[str, Any], length_mm: float) -> float:
     return pocket
 
 
+#: The reference elements' arm (mm): the fitted range's shortest (row 1, every column).
+REFERENCE_ARM_MM = 2.0
+#: How much longer (mm) the measuring arm must be than the reference's for a comb to be
+#: searched: a pitch that leaves less gives no pair whose K ratio the arms set.
+MEASURING_ARM_EXCESS_MM = 0.5
+
+
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                 targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
     """The comb's tables for one sheet, before its webs and stops (see the module doc), and
@@ -442,7 +449,7 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     start_web = max(base_web, round(web_floor(d).value_mm, 6))
     e["notch_radius_mm"] = max(e["notch_radius_mm"], start_web)
     pitch = _floor(min(usable_length_mm(d, room.along_mm) / columns, 20.0), 0.1)
-    arm_r = 2.0
+    arm_r = REFERENCE_ARM_MM
     arm_m = _floor(pitch - slot_of(d) - comb["post_length_mm"] - e["notch_radius_mm"]
                    - e["tip_width_mm"] / 2, 0.1)
     n = 2 * columns
@@ -463,9 +470,11 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     if room.table:  # the jaw's own checks judge every candidate, as they judge the design
         d["grasper_jaw"] = dict(room.table)
     binding = []
-    if arm_m < arm_r + 0.5:
+    if arm_m < arm_r + MEASURING_ARM_EXCESS_MM:
         binding.append(f"the pitch {pitch:g} mm ({columns} columns in the jaw's {room.along_mm:g} mm) "
-                       f"leaves a measuring arm of {arm_m:g} mm, not longer than the reference's")
+                       f"leaves a measuring arm of {arm_m:g} mm, short of the "
+                       f"{arm_r + MEASURING_ARM_EXCESS_MM:g} mm it needs "
+                       f"({MEASURING_ARM_EXCESS_MM:g} mm longer than the reference's {arm_r:g} mm)")
     return d, binding
 
 
@@ -2053,7 +2062,8 @@ def least_pitch_mm(base: dict, sheet: float, columns: int, room: Any, targets: T
     """
     d, _ = comb_tables(base, sheet, columns, room, targets, grade)
     e, comb = d["element"], d["comb"]
-    need = 2.0 + 0.5 + slot_of(d) + comb["post_length_mm"] + e["notch_radius_mm"] \
+    need = REFERENCE_ARM_MM + MEASURING_ARM_EXCESS_MM + slot_of(d) + comb["post_length_mm"] \
+        + e["notch_radius_mm"] \
         + e["tip_width_mm"] / 2
     return math.ceil(round(need * 10, 6)) / 10
 
