@@ -2074,9 +2074,11 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
     least pitch) cannot fit the jaw's ``room``, before any search: its height against the
     jaw's thickness and the tips' proud height, its width across the rows against the
     pocket's width, its length against the pocket's length (mm). Each a dict: ``words``
-    (the comb's size against the jaw's, naming the jaw file's key) and ``option`` (what to
-    paste: fewer columns where they fit the length, or ""). Empty when some sheet's
-    smallest comb fits every dimension (the search then decides).
+    (the comb's size against the jaw's, naming the jaw file's key), ``option`` (what to
+    paste: fewer columns where they fit the length, or "") and ``limit`` (the code the
+    search's own check sets for it, :mod:`tactcad.vocabulary.binding_limits`: the height,
+    the footprint across, the sheet for the length, whose pitch leaves no measuring arm).
+    Empty when some sheet's smallest comb fits every dimension (the search then decides).
 
     Args:
         room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
@@ -2110,6 +2112,8 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
             smallest = (sheet, env, misses, pitch)
     if smallest is None:
         return []  # no sheet's comb has a plan: the search says why
+    from tactcad.vocabulary.binding_limits import FOOTPRINT, HEIGHT, SHEET
+
     sheet, env, misses, pitch = smallest
     out = []
     keys = room_keys(room)
@@ -2120,12 +2124,13 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
         if dim == "height":
             out.append({"words": f"height {env[2]:.3g} mm (the {sheet:g} mm sheet's comb, "
                                  f"its rows on edge) vs the jaw's {room.height_mm:.3g} mm "
-                                 f"({keys['height']})", "option": paste})
+                                 f"({keys['height']})", "option": paste, "limit": HEIGHT})
             paste = ""
         elif dim == "across":
             out.append({"words": f"width {env[0]:.3g} mm across its two rows (the {sheet:g} "
                                  f"mm sheet's) vs the pocket's {room.across_mm:.3g} mm "
-                                 f"({keys['across']})", "option": paste})
+                                 f"({keys['across']})", "option": paste,
+                        "limit": FOOTPRINT})
             paste = ""
         else:
             fit = next((n for n in range(columns - 1, 0, -1)
@@ -2135,7 +2140,8 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
                                  f"least pitch {pitch:g} mm) vs the pocket's "
                                  f"{room.along_mm:.3g} mm ({keys['along']}), which must also hold the "
                                  f"length's ISO 2768-1 deviation (+/-{deviation:.3g} mm)",
-                        "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else ""})
+                        "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else "",
+                        "limit": SHEET})
     return out
 
 
