@@ -246,6 +246,19 @@ def test_more_columns_than_the_jaw_holds_names_the_most_that_fit(tmp_path):
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.parametrize("construction", ["auto", "monolithic-comb"])
+def test_more_columns_than_the_pocket_holds_name_the_columns_and_the_sheet_either_way(
+        tmp_path, construction):
+    """With the die not tried, auto is the comb alone: its screen's refusal names the same
+    option and limit code as the comb's own search, and the columns it offers design."""
+    r = run_cli(*GRASPER_CASE[:-1], "7", "--full-scale-force", "0.05", "--jaw", "10",
+                "--construction", construction, "--out", str(tmp_path / "x.toml"), "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert (error["field"], error["value"], error["limit"]) == ("--columns", 7, "sheet")
+    assert [a["option"] for a in error["alternatives"]] == ["--columns 6"]
+
+
 def test_a_comb_as_the_layout_searchs_base_is_refused_naming_the_jaw_option(tmp_path):
     comb = "hardware/grasper_jaw_10mm/grasper_jaw_10mm.toml"
     out = tmp_path / "x.toml"
@@ -289,6 +302,21 @@ def test_a_grasp_beyond_the_jaws_reach_is_refused_by_its_option(tmp_path):
     r = run_cli("design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force",
                 "0.3", "--max-grasp-force", "10", "--out", str(tmp_path / "y.toml"))
     assert r.returncode == 2 and "--max-grasp-force" in r.stderr and "only with --jaw" in r.stderr
+
+
+@pytest.mark.slow  # a comb search and its grasps, twice
+def test_a_grasp_beyond_the_jaws_reach_offers_the_most_it_reaches_which_designs(tmp_path):
+    """The jaw closed flat on its slab puts 53.78 N on the preferred comb: a 100 N grasp is
+    refused with that grasp rounded down to three digits to paste, and its limit code."""
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--max-grasp-force", "100", "--out", str(tmp_path / "x.toml"), "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "--max-grasp-force" and error["limit"] == "strength"
+    assert [a["option"] for a in error["alternatives"]] == ["--max-grasp-force 53.7"]
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--max-grasp-force", "53.7", "--out", str(tmp_path / "y.toml"))
+    assert r.returncode == 0, r.stderr
 
 
 @pytest.mark.parametrize("option, value, limit", [("--kobj-range", ["1000", "20000"], "10000"),

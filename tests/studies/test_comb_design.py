@@ -199,7 +199,7 @@ def test_the_sheets_reason_says_the_rule_that_chose_it(margin, words):
 
 def test_the_refusals_fewer_columns_check_stops_at_the_first_comb_that_carries_a_force():
     """Eight columns crowd the 10 mm jaw's pocket; seven or fewer carry a light force, so a
-    refusal offers ``--columns``; a single column has no fewer count to offer."""
+    refusal offers ``--columns``; for a single column, more columns are offered."""
     import copy
 
     from tactcad.studies.comb_design import comb_candidates, fewer_columns_carry, refusal_option
@@ -212,7 +212,7 @@ def test_the_refusals_fewer_columns_check_stops_at_the_first_comb_that_carries_a
     assert fewer_columns_carry(searched, 8, room, targets, None, array_envelope_mm)
     assert refusal_option(searched, tried, targets, room, 8, None,
                           array_envelope_mm) == "--columns"
-    assert not fewer_columns_carry(searched, 1, room, targets, None, array_envelope_mm)
+    assert fewer_columns_carry(searched, 1, room, targets, None, array_envelope_mm)
 
 
 #: Targets whose softer element's stop cannot fit at some K_m scales: a 1.5 N and a 3 N
@@ -663,3 +663,30 @@ def test_a_pair_too_tall_refused_by_its_height_leaves_the_same_fasteners_and_pla
     assert fast.data["comb"] == full.data["comb"]
     assert plan_figures(fast.plan, array_envelope_mm) == plan_figures(full.plan,
                                                                       array_envelope_mm)
+
+
+def test_a_comb_too_soft_at_its_fewest_columns_offers_the_fewest_more_that_design():
+    """Two columns leave arms too long for any web to reach K_m (one column too): the
+    refusal names ``--columns`` and offers three, the nearest count that designs, which
+    then designs as pasted."""
+    targets = Targets(10.2571, (1.94387, 51.2684), 0.0105943)
+    with pytest.raises(InverseDesignError) as caught:
+        comb_for_jaw(targets, jaw_room("10"), 2, BASE, grade=TI, envelope_of=array_envelope_mm)
+    assert caught.value.field == "--columns"
+    assert [a["option"] for a in caught.value.alternatives] == ["--columns 3"]
+    assert "none to paste" not in str(caught.value)
+    pasted = comb_for_jaw(targets, jaw_room("10"), 3, BASE, grade=TI,
+                          envelope_of=array_envelope_mm)
+    assert pasted.plan.columns == 3
+
+
+def test_a_pitch_too_short_for_the_measuring_arm_says_the_arm_it_needs():
+    """Seven columns leave a 2.3 mm measuring arm, longer than the 2 mm reference's yet
+    short of the 2.5 mm the search needs: the refusal's numbers say so."""
+    with pytest.raises(InverseDesignError) as caught:
+        comb_for_jaw(Targets(10.0, (0.5, 5.0), 0.05), jaw_room("10"), 7, BASE, grade=TI,
+                     envelope_of=array_envelope_mm)
+    text = str(caught.value)
+    assert "leaves a measuring arm of 2.3 mm, short of the 2.5 mm it needs (0.5 mm longer " \
+           "than the reference's 2 mm)" in text
+    assert "not longer than" not in text

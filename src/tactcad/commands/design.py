@@ -456,6 +456,38 @@ def misfit_alternatives(misfits: list[tuple[str, list[dict]]]) -> list[dict]:
     return out
 
 
+def misfit_option(misfits: list[tuple[str, list[dict]]], refusals: list,
+                  args: argparse.Namespace) -> tuple[str, Any, str]:
+    """The option a refusal of misfits names: ``--columns`` where one product alone was
+    judged (no other refused) and only its columns make it fit (each misfit's paste is
+    ``--columns``: the pocket's length), as that product's own search names them; else
+    ``--jaw``.
+
+    Args:
+        misfits: (product, its misfits) (:func:`misfit_alternatives`' argument).
+        refusals: the constructions searched and refused.
+        args: the options asked.
+
+    Returns:
+        (field, value, allowed): the allowed range in words for ``--columns`` (the count
+        to paste follows as its alternative), or "" for ``--jaw`` (the caller names the
+        jaw that holds the products).
+    """
+    if len(misfits) == 1 and not refusals:
+        options = [m.get("option") or "" for m in misfits[0][1]]
+        if options and all(o.startswith("--columns ") for o in options):
+            return "--columns", args.columns or 6, "no more columns than the pocket holds"
+    return "--jaw", args.jaw, ""
+
+
+def misfit_limit(misfits: list[tuple[str, list[dict]]], refusals: list) -> str:
+    """The limit code of a refusal of misfits: the first misfit's, where one product alone
+    was judged (no other refused); else "" (several products bind on their own limits)."""
+    if len(misfits) == 1 and not refusals and misfits[0][1]:
+        return misfits[0][1][0].get("limit", "")
+    return ""
+
+
 #: The target options a die's refusal pastes, and the :class:`~tactcad.studies.inverse_design.Targets`
 #: field each sets.
 DIE_TARGET_OPTIONS = {"--kr-over-km": "kr_over_km", "--kobj-range": "k_obj_range_N_per_mm",
@@ -1112,14 +1144,15 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                   *(a for _, e in refusals for a in e.alternatives)]
         untried = ([f"silicon die: not tried ({', '.join(die_ignored(args))}: a metal's "
                     "options)"] if args.construction == "auto" and die_ignored(args) else [])
+        field, value, allowed = misfit_option(misfits, refusals, args)
         raise DesignError(
-            "--jaw", args.jaw, "a jaw that holds " + " or ".join(
+            field, value, allowed or "a jaw that holds " + " or ".join(
                 ["a " + n for n, _ in misfits] + [n for n, _ in refusals]),
             "\n  ".join([""] + [one_refusal_line(n, misfit_words(m)) for n, m in misfits]
                         + [one_refusal_line(n, e) for n, e in refusals] + untried
                         + ([] if pasted else ["none to paste: no option or jaw file key "
                                               "makes one of them fit this jaw"])),
-            alternatives=pasted)
+            alternatives=pasted, limit=misfit_limit(misfits, refusals))
     if result is None:
         if len(refusals) == 1:
             raise refusals[0][1]

@@ -937,6 +937,42 @@ def design_grasp_at_force(plan: Plan, force_N: float, rated_force_N: float,
                  tissue_base=tissue_base_of(plan))
 
 
+def design_grasp_reach_N(plan: Plan, rated_force_N: float, k_obj_range: tuple[float, float],
+                         model: str = "closed-form") -> tuple[float, float]:
+    """The grasp forces (N) a design's jaw reaches on its tissue, as
+    :func:`design_grasp_at_force` grasps it: from the jaw fully open to closed flat on the
+    slab, in every layout the grasp solves (the largest open force, the least closed one:
+    :func:`angle_for_force` refuses a force outside any layout's reach).
+
+    Args:
+        plan: the design.
+        rated_force_N: each element's rated full-scale force (N), > 0.
+        k_obj_range: the required K_obj range (N/mm); the tissue's K_obj is its geometric mean.
+        model: the level of the elements' K.
+
+    Returns:
+        (least, largest) grasp force (N) in reach.
+
+    Raises:
+        DesignError: a value out of range (:func:`grasp`).
+    """
+    from tactcad.mechanics.evaluation import ladder_stiffness_by_element
+    from tactcad.mechanics.readout_chain import row_units
+
+    k = ladder_stiffness_by_element(plan, model)
+    by_part = {s.geometry.part_name: k[s.number] for s in plan.slots}
+    units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
+    jaw, k_obj = default_jaw(plan), math.sqrt(k_obj_range[0] * k_obj_range[1])
+
+    def totals(angle_deg: float) -> list[float]:
+        result = grasp(plan, jaw, k, units, k_obj, rated_force_N, angle_deg=angle_deg,
+                       profile=OVERLOAD_PROFILE, tissue_base=tissue_base_of(plan))
+        layouts = [result.as_laid_out, result.paired, result.along_rows]
+        return [layout.total_force_N for layout in layouts if layout is not None]
+
+    return max(totals(jaw.opening_angle_deg)), min(totals(0.0))
+
+
 def in_kobj_range(k_obj_N_per_mm: float, kobj_range: tuple[float, float]) -> bool:
     """Whether a K_obj (N/mm) lies in the design's required K_obj range (N/mm, its ends
     included to 1e-9 relative): the range the design is made to read."""

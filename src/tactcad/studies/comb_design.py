@@ -423,6 +423,13 @@ def pocket_for_length_mm(d: Mapping[str, Any], length_mm: float) -> float:
     return pocket
 
 
+#: The reference elements' arm (mm): the fitted range's shortest (row 1, every column).
+REFERENCE_ARM_MM = 2.0
+#: How much longer (mm) the measuring arm must be than the reference's for a comb to be
+#: searched: a pitch that leaves less gives no pair whose K ratio the arms set.
+MEASURING_ARM_EXCESS_MM = 0.5
+
+
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                 targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
     """The comb's tables for one sheet, before its webs and stops (see the module doc), and
@@ -442,7 +449,7 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     start_web = max(base_web, round(web_floor(d).value_mm, 6))
     e["notch_radius_mm"] = max(e["notch_radius_mm"], start_web)
     pitch = _floor(min(usable_length_mm(d, room.along_mm) / columns, 20.0), 0.1)
-    arm_r = 2.0
+    arm_r = REFERENCE_ARM_MM
     arm_m = _floor(pitch - slot_of(d) - comb["post_length_mm"] - e["notch_radius_mm"]
                    - e["tip_width_mm"] / 2, 0.1)
     n = 2 * columns
@@ -463,9 +470,11 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     if room.table:  # the jaw's own checks judge every candidate, as they judge the design
         d["grasper_jaw"] = dict(room.table)
     binding = []
-    if arm_m < arm_r + 0.5:
+    if arm_m < arm_r + MEASURING_ARM_EXCESS_MM:
         binding.append(f"the pitch {pitch:g} mm ({columns} columns in the jaw's {room.along_mm:g} mm) "
-                       f"leaves a measuring arm of {arm_m:g} mm, not longer than the reference's")
+                       f"leaves a measuring arm of {arm_m:g} mm, short of the "
+                       f"{arm_r + MEASURING_ARM_EXCESS_MM:g} mm it needs "
+                       f"({MEASURING_ARM_EXCESS_MM:g} mm longer than the reference's {arm_r:g} mm)")
     return d, binding
 
 
@@ -1327,8 +1336,8 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
     """The option :func:`comb_for_jaw`'s refusal names when no candidate of ``tried``
     counts, found as it finds it but without the force it offers to paste: ``--jaw`` where
     the pocket holds no sheet's comb (:func:`nearest_jaw`), ``--full-scale-force`` where some
-    candidate carries a force, ``--columns`` where fewer columns count
-    (:func:`fewer_columns_carry`), else ``--full-scale-force``.
+    candidate carries a force, ``--columns`` where another column count counts or carries
+    one (:func:`fewer_columns_carry`), else ``--full-scale-force``.
 
     Args:
         base: the tables as searched (:func:`comb_candidates`' first value).
@@ -1348,23 +1357,24 @@ def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, roo
 
 def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
                         grade: str | None, envelope_of: Callable | None) -> bool:
-    """Whether :func:`nearest_columns` finds an answer (it is not None): some count below
-    ``columns`` has a candidate that counts or carries some force. Stops at the first such
-    candidate instead of bisecting the force it would carry: the refusal's option alone.
+    """Whether :func:`nearest_columns` finds an answer (it is not None): some count other
+    than ``columns`` (fewer first, then more: :func:`other_column_counts`) has a candidate
+    that counts or carries some force. Stops at the first such candidate instead of
+    bisecting the force it would carry: the refusal's option alone.
 
     Args:
         base, columns, room, targets, grade, envelope_of: as :func:`nearest_columns`.
 
     Returns:
-        True when a fewer-column comb counts or is rated for some force.
+        True when a comb of another column count counts or is rated for some force.
     """
 
     scales = stop_fitting_scales(targets)  # the others carry at no column count
     with candidates_weighed():
-        for fewer in range(columns - 1, 0, -1):
+        for count in sum(other_column_counts(columns), ()):
             for sheet in sheets_of(base):
                 for scale in scales:
-                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                    c = candidate(base, sheet, scale, count, room, targets, grade,
                                   envelope_of, None)
                     if (c.plan is not None and not c.failures) or c.rated_force_N:
                         return True
@@ -1585,25 +1595,91 @@ def surviving(good: list[CombCandidate], grasp_N: float, room: Any,
     only the candidates that count otherwise are grasped.
 
     Raises:
-        InverseDesignError: none survives; names the nearest one's binding limit.
+        InverseDesignError: none survives; names the nearest one's binding limit and its
+            code (``limit``), and, where the grasp is out of the jaw's reach, the nearest
+            grasp in reach that a candidate survives (:func:`grasp_in_reach`).
     """
     nearest = None
     for c in in_preference(good):
-        d = copy_tables(c.data)
-        d["requirements"]["max_grasp_force_N"] = float(grasp_N)
-        d["grasper_jaw"] = dict(room.table or {})
-        plan, fails, margin, rated = judge(d, envelope_of, room)
+        d = grasped_tables(c.data, grasp_N, room)
+        plan, fails, codes, margin, rated = judge_limits(d, envelope_of, room)
         if plan is not None and not fails:
             return replace(c, data=d, plan=plan, force_margin_rel=margin, rated_force_N=rated)
-        nearest = nearest or fails
+        nearest = nearest or (fails, codes)
+    fails, codes = nearest or (("?",), ())
     lo, hi = targets.k_obj_range_N_per_mm
     text = (f"no monolithic comb of 2 x {columns} for the {room.label} (K_r/K_m "
             f"{targets.kr_over_km:g}, K_obj {lo:g} ... {hi:g} N/mm at "
             f"{targets.full_scale_force_N:g} N) survives a {grasp_N:g} N grasp "
             f"(--max-grasp-force): of the "
-            f"{len(good)} that count, the first binds on {(nearest or ('?',))[0]}")
-    raise InverseDesignError(text, "--max-grasp-force", grasp_N,
-                             "a grasp the comb's hard stops hold")
+            f"{len(good)} that count, the first binds on {fails[0]}")
+    pasted = grasp_in_reach(good, grasp_N, room, envelope_of, targets)
+    if pasted is None:
+        text += "\n  none to paste: no comb that counts survives a grasp in its jaw's reach"
+    refused = InverseDesignError(
+        text + (f"\n  nearest: --max-grasp-force {pasted:.3g}" if pasted else ""),
+        "--max-grasp-force", grasp_N, "a grasp the comb's hard stops hold",
+        alternatives=[{"option": f"--max-grasp-force {pasted:.3g}",
+                       "words": "the nearest grasp in the jaw's reach that the comb "
+                                "survives"}] if pasted else [])
+    refused.limit = codes[0] if codes else ""
+    raise refused
+
+
+def grasped_tables(data: Mapping[str, Any] | None, grasp_N: float, room: Any) -> dict:
+    """A candidate's tables (``data``: a counting candidate's, never None) asked to survive a
+    grasp of ``grasp_N`` (N) in the jaw of ``room`` (its ``[grasper_jaw]`` table)."""
+    d = copy_tables(data)
+    d["requirements"]["max_grasp_force_N"] = float(grasp_N)
+    d["grasper_jaw"] = dict(room.table or {})
+    return d
+
+
+#: How many candidates :func:`grasp_in_reach` judges at the grasp it would offer before it
+#: offers none: each is a grasp's contact solve, and the first in reach nearly always holds.
+GRASP_REACH_TRIES = 3
+
+
+def grasp_in_reach(good: list[CombCandidate], grasp_N: float, room: Any,
+                   envelope_of: Callable | None, targets: Targets) -> float | None:
+    """The grasp (N) a refusal of ``grasp_N`` offers when that grasp is out of the jaw's
+    reach: for the candidates in :func:`in_preference`'s order whose reach
+    (:func:`tactcad.in_use.grasp_experiment.design_grasp_reach_N`, the jaw open to closed
+    flat on its slab) leaves ``grasp_N`` out, the end of that reach nearest it, to three
+    significant digits inward (down from above, up from below) so that it is in reach; the
+    first such grasp the candidate then survives (:func:`judge_limits`), after at most
+    :data:`GRASP_REACH_TRIES` tries.
+
+    Args:
+        good: the candidates that count. grasp_N: the grasp asked (N). room, envelope_of,
+            targets: as :func:`surviving` takes them.
+
+    Returns:
+        The grasp to paste (N), or None when the asked one is in every candidate's reach
+        (an overload binds, not the reach) or none tried survives its own.
+    """
+    from tactcad.in_use.grasp_experiment import design_grasp_reach_N
+    from tactcad.vocabulary.rounding import round_down, round_up
+
+    tries = 0
+    for c in in_preference(good):
+        # the jaw's own table in the plan: its grasp is in this jaw, not a default one
+        plan = plan_from_dict(grasped_tables(c.data, grasp_N, room))
+        least, largest = design_grasp_reach_N(plan, targets.full_scale_force_N,
+                                              targets.k_obj_range_N_per_mm)
+        if least <= grasp_N <= largest:
+            continue
+        paste = round_down(largest, 3) if grasp_N > largest else round_up(least, 3)
+        if not least <= paste <= largest:
+            continue
+        plan, fails, _, _, _ = judge_limits(grasped_tables(c.data, paste, room), envelope_of,
+                                            room)
+        if plan is not None and not fails:
+            return paste
+        tries += 1
+        if tries >= GRASP_REACH_TRIES:
+            break
+    return None
 
 
 def centred_km(targets: Targets) -> float:
@@ -1986,7 +2062,8 @@ def least_pitch_mm(base: dict, sheet: float, columns: int, room: Any, targets: T
     """
     d, _ = comb_tables(base, sheet, columns, room, targets, grade)
     e, comb = d["element"], d["comb"]
-    need = 2.0 + 0.5 + slot_of(d) + comb["post_length_mm"] + e["notch_radius_mm"] \
+    need = REFERENCE_ARM_MM + MEASURING_ARM_EXCESS_MM + slot_of(d) + comb["post_length_mm"] \
+        + e["notch_radius_mm"] \
         + e["tip_width_mm"] / 2
     return math.ceil(round(need * 10, 6)) / 10
 
@@ -1997,9 +2074,11 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
     least pitch) cannot fit the jaw's ``room``, before any search: its height against the
     jaw's thickness and the tips' proud height, its width across the rows against the
     pocket's width, its length against the pocket's length (mm). Each a dict: ``words``
-    (the comb's size against the jaw's, naming the jaw file's key) and ``option`` (what to
-    paste: fewer columns where they fit the length, or ""). Empty when some sheet's
-    smallest comb fits every dimension (the search then decides).
+    (the comb's size against the jaw's, naming the jaw file's key), ``option`` (what to
+    paste: fewer columns where they fit the length, or "") and ``limit`` (the code the
+    search's own check sets for it, :mod:`tactcad.vocabulary.binding_limits`: the height,
+    the footprint across, the sheet for the length, whose pitch leaves no measuring arm).
+    Empty when some sheet's smallest comb fits every dimension (the search then decides).
 
     Args:
         room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
@@ -2033,6 +2112,8 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
             smallest = (sheet, env, misses, pitch)
     if smallest is None:
         return []  # no sheet's comb has a plan: the search says why
+    from tactcad.vocabulary.binding_limits import FOOTPRINT, HEIGHT, SHEET
+
     sheet, env, misses, pitch = smallest
     out = []
     keys = room_keys(room)
@@ -2043,12 +2124,13 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
         if dim == "height":
             out.append({"words": f"height {env[2]:.3g} mm (the {sheet:g} mm sheet's comb, "
                                  f"its rows on edge) vs the jaw's {room.height_mm:.3g} mm "
-                                 f"({keys['height']})", "option": paste})
+                                 f"({keys['height']})", "option": paste, "limit": HEIGHT})
             paste = ""
         elif dim == "across":
             out.append({"words": f"width {env[0]:.3g} mm across its two rows (the {sheet:g} "
                                  f"mm sheet's) vs the pocket's {room.across_mm:.3g} mm "
-                                 f"({keys['across']})", "option": paste})
+                                 f"({keys['across']})", "option": paste,
+                        "limit": FOOTPRINT})
             paste = ""
         else:
             fit = next((n for n in range(columns - 1, 0, -1)
@@ -2058,7 +2140,8 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
                                  f"least pitch {pitch:g} mm) vs the pocket's "
                                  f"{room.along_mm:.3g} mm ({keys['along']}), which must also hold the "
                                  f"length's ISO 2768-1 deviation (+/-{deviation:.3g} mm)",
-                        "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else ""})
+                        "option": f"--columns {fit}" if fit >= 1 and len(misses) == 1 else "",
+                        "limit": SHEET})
     return out
 
 
@@ -2126,37 +2209,60 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
             f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}", alternatives)
 
 
+def other_column_counts(columns: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """The column counts a refusal offers instead of ``columns``, in the order it tries
+    them: (fewer, most first; more, fewest first), each within
+    :data:`tactcad.design.array_plan.COLUMNS_RANGE`. A shorter pitch leaves shorter arms,
+    so a comb too soft at its longest arms counts with more columns.
+
+    Args:
+        columns: the columns asked (1 ... 12).
+
+    Returns:
+        (the counts below ``columns``, the counts above it).
+    """
+    from tactcad.design.array_plan import COLUMNS_RANGE
+
+    lo, hi = COLUMNS_RANGE
+    return tuple(range(columns - 1, lo - 1, -1)), tuple(range(columns + 1, hi + 1))
+
+
 def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
                     envelope_of: Callable | None) -> tuple[int, float | None] | None:
     """The most columns below ``columns`` whose comb counts in ``room``: (columns, None);
     else the most whose comb carries some smaller force, with that force (N: the search's
     frontier from the candidates' best rating, :func:`largest_comb_force`, over the sheets
-    and K_m scales that rated, so that the force pasted designs); None when no count below
-    ``columns`` carries any. Asked when no sheet's comb of ``columns`` has a plan (the
-    pitch or the arms bind before any force is judged)."""
+    and K_m scales that rated, so that the force pasted designs). Where no count below
+    ``columns`` carries any force, the fewest columns above it that count or carry one
+    (:func:`other_column_counts`), found the same way; None when no count does. Asked
+    when no sheet's comb of ``columns`` has a plan or a rating (the pitch, the arms or the
+    webs bind before any force is judged)."""
 
     carrying: tuple[int, float, list, dict] | None = None
     scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
+    fewer_counts, more_counts = other_column_counts(columns)
     with candidates_weighed():
-        for fewer in range(columns - 1, 0, -1):
+        for count in fewer_counts + more_counts:
+            if carrying is not None and count > columns:
+                break  # fewer columns carry a force: the nearer change is offered
             rated, judged = [], []
             for sheet in sheets_of(base):
                 for scale in scales:
-                    c = candidate(base, sheet, scale, fewer, room, targets, grade,
+                    c = candidate(base, sheet, scale, count, room, targets, grade,
                                   envelope_of, None)
                     if c.plan is not None and not c.failures:
-                        return fewer, None
+                        return count, None
                     judged.append(c)
                     rated += [(c.rated_force_N, sheet, scale)] if c.rated_force_N else []
             if rated and carrying is None:
                 best = sorted(rated, reverse=True)
-                carrying = (fewer, best[0][0], [(sheet, scale) for _, sheet, scale in best],
+                carrying = (count, best[0][0], [(sheet, scale) for _, sheet, scale in best],
                             bounds_of(judged))
     if carrying is None:
         return None
-    fewer, estimate, order, bounds = carrying
-    return fewer, largest_comb_force(estimate, lambda force: comb_counts(
-        base, force, fewer, room, targets, grade, envelope_of, order, bounds))
+    count, estimate, order, bounds = carrying
+    return count, largest_comb_force(estimate, lambda force: comb_counts(
+        base, force, count, room, targets, grade, envelope_of, order, bounds))
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
@@ -2167,7 +2273,8 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     ``frontier_N``, :func:`largest_comb_force`, else the candidates' best rating less 1 %)
     or, when the pocket binds every sheet, the nearest jaw (``jaw``, :func:`nearest_jaw`'s
     line and alternatives: no force helps then); when the grid binds before any force, the
-    most columns that count (``fewer_columns``, :func:`nearest_columns`)."""
+    nearest column count that counts or carries a force (``fewer_columns``, fewer first,
+    then more: :func:`nearest_columns`)."""
     jaw_line, jaw_alternatives = jaw
     lines = []
     for sheet in sorted({c.sheet_mm for c in tried}):  # each sheet's nearest: most margin
@@ -2193,13 +2300,14 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     if not nearest and fewer_columns is not None:
         fewer, force = fewer_columns
         nearest, option, value = f"--columns {fewer}", "--columns", columns
-        words = "the most columns whose comb counts in this jaw"
+        which = "most" if fewer < columns else "fewest"
+        words = f"the {which} columns whose comb counts in this jaw"
         if force is not None:
             nearest += f" --full-scale-force {force:.3g}"
-            words = ("the most columns whose comb carries a force in this jaw, and the "
+            words = (f"the {which} columns whose comb carries a force in this jaw, and the "
                      "largest force it carries")
     if not nearest:  # say why there is nothing to paste
-        text += (f"\n  none to paste: no comb of 1 ... {columns} columns on these sheets "
+        text += ("\n  none to paste: no comb of any column count on these sheets "
                  "carries any force in this jaw (each sheet's binding limit above)")
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
                               option, value, nearest or "a design the jaw holds",
