@@ -744,7 +744,8 @@ class Project:
         its default, whose reason the record's ``reasons`` give).
 
         Args:
-            force_N, angle_deg: the grasp force (N, 0 < F <= 1000) or the closing angle
+            force_N, angle_deg: the grasp force (N, 1e-6 <= F <= 1000: ``MIN_GRASP_FORCE_N`` of
+                :mod:`tactcad.studies.grasp_report` and up) or the closing angle
                 (degrees, 0 ... 90); at most one.
             kobj: the tissue's true stiffness under one tip (N/mm).
             coupling: ``layer``, ``halfspace`` or ``none``. profile: ``wedge`` or ``slab``.

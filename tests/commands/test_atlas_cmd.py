@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shlex
 import socket
 import subprocess
@@ -384,29 +385,54 @@ def test_a_service_that_is_not_a_scheduler_is_refused_in_time_naming_the_address
 
 
 @pytest.mark.slow  # a die judged at four points, one front point designed
-def test_a_projects_front_commands_pasted_in_its_folder_leave_it_one_design(tmp_path):
+def test_a_projects_front_commands_pasted_where_the_atlas_ran_leave_it_one_design(tmp_path):
+    """`atlas --project ojp/ojp.toml` printed `design --jaw ojp.toml ... --out ../ojp_...`,
+    which only worked from inside ojp/: pasted where the atlas ran it was refused. The
+    printed commands are named from there; the review page's (the table in the project)
+    from the project's folder."""
     import shutil
+
+    from tactcad.studies.atlas_files import read_table
 
     folder = tmp_path / "p5"
     shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
+    from tactcad.partlib.grasper_jaw import class_jaw_file_table
+
+    (folder / "jaw.toml").write_text("[grasper_jaw]\n" + "".join(
+        f"{k} = {json.dumps(v)}\n" for k, v in class_jaw_file_table("5").items()),
+        encoding="utf-8")
     design = folder / "grasper_jaw_5mm_mems.toml"
-    r = run_cli("atlas", "--project", design, "--points", "4", "--force-range", "0.002",
-                "0.02", "--workers", "1", "--no-cache", "--json")
+    text = design.read_text(encoding="utf-8")
+    design.write_text(re.sub(r'(?m)^jaw = "5"', 'jaw = "jaw.toml"', text), encoding="utf-8")
+    argv = ["atlas", "--project", "p5/grasper_jaw_5mm_mems.toml", "--points", "4",
+            "--force-range", "0.002", "0.02", "--workers", "1", "--no-cache"]
+    r = run_cli(*argv, "--json", cwd=tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     front = json.loads(r.stdout)["front"]
     assert front
     for point in front:
         words = shlex.split(point["command"])
-        out = (folder / words[words.index("--out") + 1]).resolve()
-        assert not out.is_relative_to(folder.resolve()), point["command"]
+        assert words[words.index("--jaw") + 1] == "p5/jaw.toml"
+        out = (tmp_path / words[words.index("--out") + 1]).resolve()
+        assert out.parent == tmp_path.resolve(), point["command"]
+    text_run = run_cli(*argv, cwd=tmp_path)
+    assert front[0]["command"] in text_run.stdout  # the text names the same command
     pasted = shlex.split(front[0]["command"])[1:]  # without the program's name
-    assert run_cli(*pasted, cwd=folder).returncode == 0
-    assert sorted(p.name for p in folder.glob("*.toml")) == [design.name]
-    out = (folder / pasted[pasted.index("--out") + 1]).resolve()
+    assert run_cli(*pasted, cwd=tmp_path).returncode == 0
+    assert sorted(p.name for p in folder.glob("*.toml")) == ["grasper_jaw_5mm_mems.toml",
+                                                               "jaw.toml"]
+    out = (tmp_path / pasted[pasted.index("--out") + 1]).resolve()
     assert (out / f"{out.name}.toml").is_file()  # a project of its own beside this one
+    # the review page's table: the same point, pasted in the project's folder
+    [kept] = [row["command"] for row in read_table(folder / "atlas" / "atlas.parquet")
+              if row["point"] == front[0]["point"] and row["product"] == front[0]["product"]
+              and row["material"] == front[0]["material"]]
+    words = shlex.split(kept)
+    assert words[words.index("--jaw") + 1] == "jaw.toml"
+    assert words[words.index("--out") + 1] == "../" + out.name
 
 
-def test_a_projects_commands_name_its_jaw_file_from_its_folder(tmp_path):
+def test_a_projects_commands_name_its_jaw_file_from_where_they_are_pasted(tmp_path):
     # a lab's jaw is the project's design file, named as --project gave it (from elsewhere)
     from tactcad.commands.atlas import project_records
     from tactcad.studies.design_atlas import design_command
@@ -421,12 +447,17 @@ def test_a_projects_commands_name_its_jaw_file_from_its_folder(tmp_path):
     old_cwd = Path.cwd()
     os.chdir(tmp_path.parent)
     try:
-        [row] = project_records([record], given, given)
+        [here] = project_records([record], given, given)
+        [inside] = project_records([record], given, given, design.parent)
     finally:
         os.chdir(old_cwd)
-    words = shlex.split(row["command"])
+    point_folder = "lab_atlas_monolithic_comb_17_4ph_h900_3"
+    words = shlex.split(here["command"])
+    assert words[words.index("--jaw") + 1] == given
+    assert words[words.index("--out") + 1] == f"{tmp_path.name}/{point_folder}"
+    words = shlex.split(inside["command"])
     assert words[words.index("--jaw") + 1] == "lab.toml"
-    assert words[words.index("--out") + 1] == "../lab_atlas_monolithic_comb_17_4ph_h900_3"
+    assert words[words.index("--out") + 1] == f"../{point_folder}"
 
 
 #: Where a stop reaches a run: while its cluster starts, after its judging stopped with

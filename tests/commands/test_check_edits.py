@@ -247,3 +247,36 @@ def test_an_interrupt_after_a_folder_was_written_says_so(tmp_path, monkeypatch, 
     assert cli.main(["scenes"]) == cli.EXIT_INTERRUPTED
     assert capsys.readouterr().err.strip() == \
         "tactcad: interrupted; the previous files are left as they were"
+
+
+@pytest.mark.parametrize("as_json", [False, True])
+def test_a_read_only_export_is_checked_and_its_review_page_left_with_a_warning(
+        tmp_path, export_files_only, monkeypatch, capsys, as_json):
+    """An export folder without write access printed every result, then failed
+    `review/checks.js: permission denied` (exit 3; with --json the error alone): the
+    results and the usual exit come out, with one warning that the page was not updated."""
+    from tactcad.checks import review_results
+    from tactcad.export.review_page import REVIEW_PAGE
+
+    project = tactcad.load()
+    out = tmp_path / "exports"
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n", REVIEW_PAGE: b"x"},
+                inputs_of(project))
+
+    def refused(path, data):
+        raise PermissionError(13, "Permission denied", str(path))
+
+    monkeypatch.setattr(review_results, "write_bytes_atomic", refused)
+    code = cli.main(["check", "--out", str(out), "--no-cache", *(["--json"] if as_json else [])])
+    captured = capsys.readouterr()
+    assert code == 0 and export_files_only == []
+    assert not (out / "review" / "checks.js").exists()
+    said = f"{out / 'review' / 'checks.js'}: not updated (permission denied)"
+    if as_json:
+        doc = json.loads(captured.out)
+        assert "error" not in doc and doc["failed"] == 0 and doc["checks"]
+        [warning] = [w for w in doc["warnings"] if "checks.js" in w]
+        assert warning.startswith(said)
+    else:
+        assert "passed" in captured.out and "permission denied" not in captured.out
+        assert captured.err.count("checks.js") == 1 and f"tactcad: warning: {said}" in captured.err

@@ -210,6 +210,54 @@ def test_an_out_folder_under_a_file_is_json_with_exit_2(capsys, tmp_path):
     assert "--out" in err["message"] and not (blocker / "sub").exists()
 
 
+#: What a command needs besides --cache to get past its parser (the rest take defaults).
+CACHE_COMMAND_NEEDS = {
+    ("design",): ["--kr-over-km", "5", "--kobj-range", "0.2", "1.5", "--full-scale-force",
+                  "0.05", "--jaw", "10", "--out", "d"],
+    ("atlas",): ["--jaw", "10", "--points", "8", "--seed", "4", "--material",
+                 "Ti-6Al-4V-annealed", "--out", "a10x"],
+    ("diff",): ["old.toml", "new.toml"],
+}
+
+
+def cache_commands() -> list[tuple[str, ...]]:
+    return [path for path, p in leaf_parsers(cli.build_parser()) if "--cache" in options(p)]
+
+
+@pytest.mark.parametrize("path", cache_commands(), ids=" ".join)
+@pytest.mark.parametrize("where", ["afile", "afile/store"])
+def test_a_cache_that_is_a_file_or_under_one_is_refused_before_any_work(tmp_path, path,
+                                                                        where):
+    """An atlas judged every point and then failed `afile/atlas/81: Not a directory`
+    (exit 3, nothing written); an export ran without a store. Every command refuses it first."""
+    (tmp_path / "afile").write_text("x")
+    before = sorted(tmp_path.iterdir())
+    r = run_cli(*path, *CACHE_COMMAND_NEEDS.get(path, []), "--cache", where, "--json",
+                cwd=tmp_path)
+    error = json.loads(r.stdout)["error"]
+    assert r.returncode == 2 and error["field"] == "--cache" and error["value"] == where
+    assert "writable folder" in error["allowed"] and "Traceback" not in r.stderr
+    assert sorted(tmp_path.iterdir()) == before  # nothing judged, built or written
+
+
+def test_a_cache_folder_without_write_access_is_refused(tmp_path, monkeypatch):
+    import os
+
+    from tactcad.commands import usable_cache_folder
+
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    real_access = os.access
+    monkeypatch.setattr(os, "access", lambda p, mode, **kw: Path(p) != locked
+                        and real_access(p, mode, **kw))
+    for given in (locked, locked / "new" / "store"):
+        with pytest.raises(DesignError) as exc:
+            usable_cache_folder(str(given))
+        assert exc.value.field == "--cache" and "not writable" in str(exc.value)
+    assert usable_cache_folder(str(tmp_path / "new" / "store")) == tmp_path / "new" / "store"
+    assert not (tmp_path / "new").exists()  # checked, not made
+
+
 @pytest.mark.parametrize("argv, what", [
     (["export", "--only", "bom", "--no-cache"], "a folder"),
     (["design", "--kr-over-km", "5", "--kobj-range", "0.2", "1.5", "--full-scale-force",

@@ -277,6 +277,26 @@ def test_an_out_that_is_no_design_name_is_refused_before_the_search(tmp_path, na
     assert not (tmp_path / name).exists()
 
 
+def test_the_out_help_says_a_name_with_other_characters_is_refused_with_its_cleaned_name(
+        tmp_path):
+    """The help promised such characters "made '_'"; the name is refused, offering the
+    cleaned one, and the help's example is the refusal's own."""
+    from tactcad import cli
+    from tactcad.vocabulary.schema import NAME_ALLOWED
+
+    design = cli.build_parser(["design"])._subparsers._group_actions[0].choices["design"]
+    help_text = next(a.help for a in design._actions if "--out" in a.option_strings)
+    assert "may not hold made '_'" not in help_text and NAME_ALLOWED in help_text
+    assert "is refused, offering it cleaned to paste (--out pince_ete for 'pince été')" \
+        in help_text
+    r = run_cli(*GRASPER_CASE, "--full-scale-force", "0.05", "--jaw", "10",
+                "--out", "pince été", "--json", cwd=tmp_path)
+    error = json.loads(r.stdout)["error"]
+    assert r.returncode == 2 and error["field"] == "--out"
+    assert error["alternatives"][0]["option"] == "--out pince_ete"
+    assert not list(tmp_path.iterdir())
+
+
 @pytest.mark.slow  # a whole chain through the command line or an export
 def test_a_grasp_to_survive_is_judged_on_the_comb_and_written_as_its_requirement(tmp_path):
     out = tmp_path / "insert.toml"

@@ -105,6 +105,31 @@ def test_bad_options_name_the_option_the_value_and_the_range(options, words):
     assert words in r.stderr and "allowed" in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.parametrize("force", ["1e-300", "5e-7"])
+def test_a_force_too_small_to_deflect_above_round_off_is_refused_with_its_range(force):
+    """--force-N 1e-300 reported round-off as readings (a grasp force of 6.972e-16 N,
+    deflections of 2.22e-16 mm) and passed."""
+    import tactcad
+    from tactcad.errors import DesignError
+
+    r = run_cli("grasp", "--design", TI, "--force-N", force)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert f"--force-N: '{force}': allowed a number 1e-06 ... 1000 (N)" in r.stderr
+    with pytest.raises(DesignError) as exc:  # the API's keyword takes the option's range
+        tactcad.load(TI).grasp(force_N=float(force))
+    assert "1e-06 ... 1000" in str(exc.value)
+
+
+def test_the_smallest_grasp_force_reads_as_a_heavier_one():
+    """At the floor the tips deflect far above round-off: the readings are those of a
+    grasp a thousand times heavier (the model is linear)."""
+    light = json.loads(run_cli("grasp", "--design", TI, "--force-N", "1e-6", "--json").stdout)
+    heavy = json.loads(run_cli("grasp", "--design", TI, "--force-N", "1e-3", "--json").stdout)
+    assert light["as_laid_out"]["total_force_N"] == pytest.approx(1e-6, rel=1e-9)
+    for a, b in zip(light["as_laid_out"]["units"], heavy["as_laid_out"]["units"], strict=True):
+        assert a["error_rel"] == pytest.approx(b["error_rel"], rel=1e-6, abs=1e-9)
+
+
 def test_an_option_of_two_values_is_refused_with_both_as_given():
     """--pivot-mm 0 0 was said "--pivot-mm = 0.0", one coordinate of the two."""
     r = run_cli("grasp", "--design", TI, "--pivot-mm", "0", "0")

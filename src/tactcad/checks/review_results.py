@@ -59,3 +59,32 @@ def write_checks_script(out_dir: Path, design_sha256: str,
     path = Path(out_dir) / CHECKS_SCRIPT
     write_bytes_atomic(path, checks_script(design_sha256, groups).encode("utf-8"))
     return path
+
+
+def update_checks_script(out_dir: str | Path, design_sha256: str,
+                         groups: Iterable[tuple[str, Iterable]]) -> Path | None:
+    """:func:`write_checks_script` for ``tactcad check``: a file that cannot be written (an
+    export folder without write access) is warned about, not an error, since the checks ran
+    and their results are the command's answer (the command leaves the export's files as
+    they are).
+
+    Args:
+        out_dir: the export checked. design_sha256: the design's hash.
+        groups: (group, results) of the run.
+
+    Returns:
+        The file's path; None when there is no page to show it or it was not written.
+
+    Warns:
+        UserWarning: naming the file not updated and why.
+    """
+    import warnings
+
+    try:
+        return write_checks_script(Path(out_dir), design_sha256, groups)
+    except OSError as exc:
+        why = (exc.strerror or type(exc).__name__).lower()
+        warnings.warn(UserWarning(
+            f"{Path(out_dir) / CHECKS_SCRIPT}: not updated ({why}): the review page shows "
+            "the checks it held before; this run's results are those printed"))
+        return None

@@ -247,16 +247,23 @@ def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
         if complete and kept is not None:
             write_table(kept, records, inputs)
     seconds = time.perf_counter() - start
-    if args.project is not None:  # the front's commands are pasted in the project's folder
-        records = project_records(records, args.project, jaw)
-    summary = atlas_summary(records, inputs, seconds, reused, complete, out)
+    kept_rows = printed_rows = records
+    if args.project is not None:
+        # the printed commands are pasted where the atlas ran; the project's atlas files
+        # (its review page) name paths from the project's own folder
+        printed_rows = project_records(records, args.project, jaw)
+        kept_rows = project_records(records, args.project, jaw,
+                                    Path(args.project).resolve().parent)
+    summary = atlas_summary(kept_rows, inputs, seconds, reused, complete, out)
+    printed = (summary if printed_rows is kept_rows else
+               atlas_summary(printed_rows, inputs, seconds, reused, complete, out))
     # the files are one set: a stop while they are written waits for the last of them
     with stop_signals_held(block_in_children=False):
-        write_atlas_files(out, records, summary, {**inputs, "complete": complete}, jaw)
+        write_atlas_files(out, kept_rows, summary, {**inputs, "complete": complete}, jaw)
         if args.json:
-            print(json.dumps(summary, indent=2, allow_nan=False))
+            print(json.dumps(printed, indent=2, allow_nan=False))
         else:
-            print_summary(summary)
+            print_summary(printed)
     return 0 if complete else 130
 
 
@@ -277,27 +284,49 @@ def write_atlas_files(out: Path, records: list[dict], summary: dict, inputs: dic
                        (json.dumps(summary, indent=2, allow_nan=False) + "\n").encode("utf-8"))
 
 
-def project_records(records: list[dict], design: str, jaw: str) -> list[dict]:
-    """``records`` with each design command pasted in the project's folder: writing a new
-    project folder beside it, a jaw file named from there
+def project_records(records: list[dict], design: str, jaw: str,
+                    pasted_in: Path | None = None) -> list[dict]:
+    """``records`` with each design command writing a new project folder beside the
+    project's, its jaw file and that folder named from ``pasted_in``
     (:func:`~tactcad.studies.design_atlas.command_beside_project`).
 
     Args:
         records: the atlas table's rows. design: ``--project``. jaw: the atlas's ``--jaw``.
+        pasted_in: the folder the commands are to be pasted in (None: the working folder,
+            where the atlas command runs).
 
     Returns:
         New rows; the kept table in the store is left as the jaw's.
     """
-    import os
-
     from tactcad.studies.design_atlas import command_beside_project
 
+    here = (Path.cwd() if pasted_in is None else pasted_in).resolve()
     folder = Path(design).resolve().parent
     jaw_file = Path(jaw)
-    jaw_here = (os.path.relpath(jaw_file.resolve(), folder)
+    jaw_here = (named_from(jaw_file.resolve(), here)
                 if jaw_file.suffix.lower() == ".toml" and jaw_file.is_file() else "")
-    return [{**r, "command": command_beside_project(r["command"], folder.name, jaw, jaw_here)}
+    beside = named_from(folder.parent, here)
+    return [{**r, "command": command_beside_project(r["command"], folder.name, jaw, jaw_here,
+                                                    beside)}
             for r in records]
+
+
+def named_from(path: Path, here: Path) -> str:
+    """``path`` as a command pasted in ``here`` names it: relative to ``here``, or absolute
+    where no relative path leads there (another drive on Windows).
+
+    Args:
+        path, here: absolute paths.
+
+    Returns:
+        The path, with ``/`` between its names.
+    """
+    import os
+
+    try:
+        return Path(os.path.relpath(path, here)).as_posix()
+    except ValueError:
+        return path.as_posix()
 
 
 def project_jaw(design: str) -> tuple[str, str]:

@@ -84,9 +84,9 @@ def run(args: argparse.Namespace) -> int:
     bad = result.failures
     counts = status_counts(result.results)
     if args.out:  # the export's review page shows them (review/checks.js)
-        from tactcad.checks.review_results import write_checks_script
+        from tactcad.checks.review_results import update_checks_script
 
-        write_checks_script(args.out, project.plan.design_hash, result.groups)
+        update_checks_script(args.out, project.plan.design_hash, result.groups)
     if args.json:
         print(dumps({"out": args.out, "reused_export": result.reused_export,
                      "export_refusal": result.export_refusal, **counts, "junit": args.junit,

@@ -20,6 +20,7 @@ from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRA
 from tactcad.design.array_plan import (COLUMNS_RANGE, MIN_PAIRED_COLUMNS, STACKED_COLUMNS_RANGE,
                                        STACKED_COLUMNS_WHY)
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
+from tactcad.vocabulary.schema import NAME_ALLOWED
 
 
 def check_columns(columns: int, allowed: tuple[int, int], what: str, why: str) -> None:
@@ -201,10 +202,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "states it as requirements.footprint_mm so verify and check keep it")
     p.add_argument("--out", metavar="NEW.toml|DIR", required=True,
                    help="design file to write (.toml), or a sensor project folder DIR to make "
-                        "as `tactcad new` does (the design DIR/<name>.toml, the name DIR's "
-                        "own with any character a design name may not hold made '_', with "
-                        "its rigs, scenes, README, .gitignore and CI workflow); any writable "
-                        "folder but system folders")
+                        "as `tactcad new` does (the design DIR/<name>.toml, <name> DIR's own "
+                        "with '-' made '_', with its rigs, scenes, README, .gitignore and CI "
+                        "workflow); the file's or folder's name is the design's: "
+                        f"{NAME_ALLOWED}; a name with another character (a space, an accent) "
+                        "is refused, offering it cleaned to paste (--out pince_ete for "
+                        "'pince été'); any writable folder but system folders")
     p.add_argument("--force", action="store_true",
                    help="overwrite an existing file (default: refuse); for a project folder, "
                         "the files tactcad wrote for the project it held (its design, README, "

@@ -810,11 +810,11 @@ def die_check(design: Path, args: argparse.Namespace,
                        + sheet_file_results(files["drawing"]))
         counts = status_counts(checks)
         if not missing and args.out:  # the results on the export's review page, as an array's
-            from tactcad.checks.review_results import write_checks_script
+            from tactcad.checks.review_results import update_checks_script
 
             sha = (json_module.loads(files["manifest"].read_text(encoding="utf-8"))
                    .get("design", {}).get("sha256", ""))
-            write_checks_script(out, sha, [(f"die {name}", checks)])
+            update_checks_script(out, sha, [(f"die {name}", checks)])
         if junit is not None:  # one suite, the die's: for a lab's CI as an array's check gives
             from tactcad.checks.junit import write_junit
 

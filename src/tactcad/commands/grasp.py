@@ -56,8 +56,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     how.add_argument("--angle-deg", type=ranged("angle_deg"), default=None,
                      help="the jaw's closing angle above the opposing jaw (degrees)")
     how.add_argument("--force-N", dest="force_N", type=ranged("force_N"),
-                     default=None, help="the grasp force the tips put on the tissue (N; "
-                                        "default half the rated full-scale force on every "
+                     default=None, help="the grasp force the tips put on the tissue (N, "
+                                        "1e-06 ... 1000: a smaller force's tip deflections "
+                                        "are lost in round-off; default half the rated full-scale force on every "
                                         "element)")
     p.add_argument("--slab-thickness-mm", type=ranged("slab_thickness_mm"),
                    default=None,

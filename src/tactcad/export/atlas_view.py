@@ -198,7 +198,8 @@ def _view(records: list[dict], summary: dict) -> dict:
              + ("" if len(drawn) == len(points) else
                 f"; {len(drawn)} drawn (the front and the designed points first)"))
     note = ("Each point is a target judged as `tactcad design` judges it. Hover a point for "
-            "its figures or the limit that refused it; click it to copy its design command."
+            "its figures or the limit that refused it; click it to copy its design command, "
+            "to paste in the project's folder."
             + ("" if summary.get("complete", True) else
                " The run was stopped: only the points that finished are shown."))
     columns = [heading for _, heading in FRONT_COLUMNS]

@@ -495,20 +495,23 @@ def written_name(product: str, material: str, point: int) -> str:
 
 
 def command_beside_project(command: str, project: str, jaw: str = "",
-                           jaw_here: str = "") -> str:
-    """A point's design command to paste in a sensor project's folder: its ``--out`` a new
-    project folder beside that one (``../<project>_atlas_...``), since a second design file
-    in the project's folder would leave every later command there refused.
+                           jaw_here: str = "", beside: str = "..") -> str:
+    """A point's design command writing a new project folder beside a sensor project's
+    (``<beside>/<project>_atlas_...``), since a second design file in the project's folder
+    would leave every later command there refused.
 
     Args:
         command: a line of :func:`design_command` (ending ``--out atlas_....toml``).
         project: the project folder's name.
-        jaw: the line's ``--jaw``; jaw_here: the same jaw named from the project's folder
-            (a jaw file's path); either empty: the line's ``--jaw`` is kept.
+        jaw: the line's ``--jaw``; jaw_here: the same jaw named from the folder the line is
+            pasted in (a jaw file's path); either empty: the line's ``--jaw`` is kept.
+        beside: the folder holding the project's folder, named from the folder the line is
+            pasted in (``..`` from the project's own folder).
 
     Returns:
         The line with its ``--out`` a folder beside the project, named after it and the point.
     """
+    import posixpath
     import shlex
 
     head, _, name = command.rpartition(" --out ")
@@ -516,7 +519,8 @@ def command_beside_project(command: str, project: str, jaw: str = "",
     if jaw and jaw_here and head.startswith(given):
         head = f"tactcad design --jaw {shlex.quote(jaw_here)} " + head[len(given):]
     folder = f"{project}_{name.removesuffix('.toml')}"
-    return f"{head} --out {shlex.quote('../' + folder)}"
+    out = folder if beside in ("", ".") else posixpath.join(beside, folder)
+    return f"{head} --out {shlex.quote(out)}"
 
 
 def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:

@@ -20,11 +20,19 @@ from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPEN
 #: The shaft's lead channel where the design states no grasper (mm, assumed).
 DEFAULT_LEAD_CHANNEL_MM = 3.0
 
+#: The smallest grasp force asked (N): a micronewton. Off its stops the grasp is linear in
+#: its force, so its readings should not depend on it; the contact solve's round-off makes
+#: them: on the 2 x 3 Ti array a unit's K_obj error read at 1e-6 N is a 1 mN grasp's to
+#: 1e-6, at 1e-10 N it drifts in the fourth digit, at 1e-12 N by a per cent, and at 1e-300 N
+#: the "readings" are round-off alone (deflections of 2e-16 mm). Three decades below the
+#: lightest rating of the shipped designs (a die's millinewtons).
+MIN_GRASP_FORCE_N = 1e-6
+
 #: Each number a grasp is asked with: (low, high, unit, low end open); the command's
 #: options and the API's keyword arguments take the same ranges.
 GRASP_NUMBERS: dict[str, tuple[float, float, str, bool]] = {
     "angle_deg": (0.0, 90.0, "degrees", False),
-    "force_N": (0.0, 1000.0, "N", True),
+    "force_N": (MIN_GRASP_FORCE_N, 1000.0, "N", False),
     "slab_thickness_mm": (0.0, 100.0, "mm", True),
     "kobj": (0.0, 1e4, "N/mm", True),
     "pivot_mm": (-500.0, 500.0, "mm", False),
