@@ -369,3 +369,16 @@ def test_a_force_refusals_at_most_is_rounded_down_never_past_the_limit(limit):
     e = force_refusal(5.0 * limit, limit, 0.0, "the targets", "bound by a limit")
     said = float(re.match(r"at most (\S+) N", e.allowed).group(1))
     assert limit * 0.99 <= said <= limit
+
+
+@pytest.mark.slow  # a whole design search through the command line
+def test_a_ratio_near_one_is_refused_as_the_ratio_not_as_a_force_not_given(tmp_path, capsys):
+    """K_r/K_m 1.0000001 was refused as "--full-scale-force (not given): ... no layout's
+    elements could be weighed" although the force was given: the tissue-coupled centring
+    refused every layout's tips, and the refusal names the ratio and why."""
+    code = main(["design", "--kr-over-km", "1.0000001", "--kobj-range", "1", "10",
+                 "--full-scale-force", "0.1", "--out", str(tmp_path / "d"), "--json"])
+    error = json.loads(capsys.readouterr().out)["error"]
+    assert code == 2 and error["field"] == "--kr-over-km" and error["value"] == 1.0000001
+    assert "changes with K_obj through the tissue" in error["allowed"]
+    assert "outside 0.01 ... 100" in error["message"] and not (tmp_path / "d").exists()

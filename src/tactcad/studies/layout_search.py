@@ -539,6 +539,9 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
         mechs = [(c, _mechanics(seen, data, c, targets, correction)) for c in seen.stack_fit]
         mechs = [(c, m) for c, m in mechs if m is not None]
         if not mechs:  # the values the user fixed break a rule no free value mends
+            unseen = tissue_centring_error(data, seen.stack_fit, targets)
+            if unseen is not None:  # or no rule is broken: the tissue hides K_obj from R
+                return _error([unseen], [], targets)
             return fewest_rule_errors(data, seen.stack_fit)
         stiff = [(c, m) for c, m in mechs if m.largest_force_N > 0]
         if not stiff:
@@ -881,6 +884,38 @@ def _round_away(x: float, asked: float) -> float:
     offer stays on the feasible side of the edge between them)."""
     e = 10.0 ** (math.floor(math.log10(x)) - 2)
     return (math.ceil(x / e - 1e-9) if x > asked else math.floor(x / e + 1e-9)) * e
+
+
+def tissue_centring_error(data: Mapping[str, Any], layouts: Sequence[FreeLayout],
+                          targets: Targets) -> DesignError | None:
+    """``--kr-over-km`` refused where the tissue-coupled centring of K_r and K_m
+    (:func:`centrings`) refuses the first layout's tips: near K_r/K_m = 1 the unit's R
+    barely changes with K_obj, and the K_obj factor the centring asks runs out of its
+    range (2e-9 at K_r/K_m 1.0000001 over 1-10 N/mm), so no layout's elements are weighed.
+
+    Args:
+        data: the start's raw tables. layouts: the layouts searched, nearest first.
+        targets: the targets asked.
+
+    Returns:
+        The error naming ``--kr-over-km`` and the factor asked, or None where the targets
+        carry no tissue, no layout was searched or the centring is not what refuses.
+    """
+    if targets.tissue is None or not layouts:
+        return None
+    try:
+        centrings(with_layout(data, layouts[0]), targets)
+    except DesignError as exc:
+        if exc.field != "--tissue-coupling":
+            return None
+        factor = exc.value if isinstance(exc.value, float) else math.nan
+        return DesignError(
+            "--kr-over-km", targets.kr_over_km,
+            "a ratio at which the unit's R = e_m/e_r changes with K_obj through the tissue",
+            f"centring K_r and K_m on the range through the tissue asks a K_obj factor of "
+            f"{factor:.3g}, outside 0.01 ... 100: near K_r/K_m = 1 a unit reads nearly the "
+            "same R at every K_obj")
+    return None
 
 
 def fewest_rule_errors(data: Mapping[str, Any], layouts: Sequence[FreeLayout]) -> DesignError:
