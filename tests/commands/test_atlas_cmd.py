@@ -582,3 +582,51 @@ def test_a_local_cluster_that_does_not_start_is_a_refusal_not_a_traceback(
     assert "did not start (RuntimeError: Nanny failed to start.)" in error["message"]
     assert "--scheduler ADDRESS" in error["message"] and "Traceback" not in out.err
     assert not (tmp_path / "exports").exists()
+
+
+def test_a_stopped_atlas_is_resumed_judging_only_the_points_it_had_not_finished(
+        tmp_path, monkeypatch):
+    import contextlib
+
+    import tactcad.studies.design_atlas as design_atlas
+    import tactcad.studies.sweeps as sweeps
+
+    class Client:
+        def nthreads(self):
+            return {"worker": 1}
+
+    @contextlib.contextmanager
+    def cluster(scheduler, workers):
+        yield Client()
+
+    asked: list[list[int]] = []
+    stop_after: list[int | None] = [2]  # points a run finishes before its stop (None: all)
+
+    def judging(atlas, points, client, batch_size=1, **kwargs):
+        asked.append([p["point"] for p in points])
+        n = stop_after[0]
+        done = points if n is None else points[:n]
+        return ([{**verdict(p["point"], "mems-die", False, 0.01, 5.0, float("nan")),
+                  "material": "silicon"} for p in done], n is None)
+
+    monkeypatch.setattr(sweeps, "dask_client", cluster)
+    monkeypatch.setattr(design_atlas, "run_atlas", judging)
+    out, cache = tmp_path / "out", tmp_path / "cache"
+    argv = (*DIE_ATLAS, "--out", out, "--cache", cache, "--json")
+    first = run_cli(*argv)
+    assert first.returncode == 130 and asked == [[0, 1, 2, 3, 4, 5]]
+    assert json.loads(first.stdout)["records"] == 2
+    stop_after[0] = 1  # a second stop, after fewer points than the first finished
+    second = run_cli(*argv)
+    assert second.returncode == 130 and asked[-1] == [2, 3, 4, 5]
+    s = json.loads(second.stdout)
+    assert s["resumed_points"] == 2 and s["records"] == 3  # the kept part only grew
+    stop_after[0] = None
+    third = run_cli(*argv)
+    assert third.returncode == 0 and asked[-1] == [3, 4, 5]
+    s = json.loads(third.stdout)
+    assert s["complete"] is True and s["resumed_points"] == 3
+    assert [r["point"] for r in table(out / "atlas.parquet")] == [0, 1, 2, 3, 4, 5]
+    assert not list(cache.rglob("*.partial.parquet"))  # the whole table kept, not the part
+    fourth = run_cli(*argv)
+    assert json.loads(fourth.stdout)["reused"] is True and len(asked) == 3

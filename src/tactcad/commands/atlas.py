@@ -241,11 +241,9 @@ def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
               "products": [list(p) for p in atlas.products], "key": key}
     start = time.perf_counter()
     records = read_table(kept) if kept is not None and kept.is_file() else None
-    reused, complete = records is not None, True
+    reused, complete, resumed = records is not None, True, 0
     if records is None:
-        records, complete = judged(atlas, points, args)
-        if complete and kept is not None:
-            write_table(kept, records, inputs)
+        records, complete, resumed = judged_on_top(atlas, points, args, kept, inputs)
     seconds = time.perf_counter() - start
     kept_rows = printed_rows = records
     if args.project is not None:
@@ -254,9 +252,9 @@ def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
         printed_rows = project_records(records, args.project, jaw)
         kept_rows = project_records(records, args.project, jaw,
                                     Path(args.project).resolve().parent)
-    summary = atlas_summary(kept_rows, inputs, seconds, reused, complete, out)
+    summary = atlas_summary(kept_rows, inputs, seconds, reused, complete, out, resumed)
     printed = (summary if printed_rows is kept_rows else
-               atlas_summary(printed_rows, inputs, seconds, reused, complete, out))
+               atlas_summary(printed_rows, inputs, seconds, reused, complete, out, resumed))
     # the files are one set: a stop while they are written waits for the last of them
     with stop_signals_held(block_in_children=False):
         write_atlas_files(out, kept_rows, summary, {**inputs, "complete": complete}, jaw)
@@ -265,6 +263,53 @@ def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
         else:
             print_summary(printed)
     return 0 if complete else 130
+
+
+def partial_table(kept: Path) -> Path:
+    """Where the store keeps a stopped atlas's finished points, beside its whole table."""
+    return kept.with_name(kept.name.replace(".parquet", ".partial.parquet"))
+
+
+def judged_on_top(atlas, points: list[dict], args: argparse.Namespace, kept: Path | None,
+                  inputs: dict) -> tuple[list[dict], bool, int]:
+    """The points judged, on top of what a stopped run of the same atlas kept.
+
+    A stopped run keeps its finished points in the store (:func:`partial_table`); a run of
+    the same inputs judges only the others, and a run stopped again keeps the union, so the
+    kept part only grows. Once every point is judged the whole table is kept and the part
+    removed.
+
+    Args:
+        atlas: the jaw. points: the targets. args: as :func:`judged`.
+        kept: the whole table's place in the store (None: ``--no-cache``, nothing kept).
+        inputs: the table's metadata.
+
+    Returns:
+        (the records in point order, True when every point is judged, the points read from
+        the kept part).
+
+    Raises:
+        ClusterError: nothing answers at ``--scheduler``.
+    """
+    from tactcad.studies.design_atlas import ordered
+
+    part = None if kept is None else partial_table(kept)
+    earlier = (read_table(part) or []) if part is not None and part.is_file() else []
+    wanted = {p["point"] for p in points}
+    earlier = [r for r in earlier if r.get("point") in wanted]
+    finished = {r["point"] for r in earlier}
+    todo = [p for p in points if p["point"] not in finished]
+    new, complete = judged(atlas, todo, args) if todo else ([], True)
+    records = ordered(earlier + new, atlas) if earlier else new
+    if kept is not None:
+        # the store's files a stop must not split: the whole table or the grown part
+        with stop_signals_held(block_in_children=False):
+            if complete:
+                write_table(kept, records, inputs)
+                part.unlink(missing_ok=True)
+            elif new:
+                write_table(part, records, inputs)
+    return records, complete, len(finished)
 
 
 def write_atlas_files(out: Path, records: list[dict], summary: dict, inputs: dict,
@@ -451,13 +496,14 @@ def judged(atlas, points: list[dict], args: argparse.Namespace) -> tuple[list[di
 
 
 def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: bool,
-                  complete: bool, out: Path) -> dict:
+                  complete: bool, out: Path, resumed: int = 0) -> dict:
     """The run's summary (``atlas.json``, ``--json``).
 
     Args:
         records: every verdict. inputs: the run's inputs (jaw, points, seed, ranges, key).
         seconds: the run's wall time (s). reused: read from the store. complete: every
-            batch ran. out: the ``--out`` folder.
+            batch ran. out: the ``--out`` folder. resumed: the points read from what a
+            stopped run kept (not judged by this run, nor counted in its rate).
 
     Returns:
         Per product and material the points, the feasible ones, the binding limits counted,
@@ -490,8 +536,10 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
     return {"jaw": inputs["jaw"], "points": inputs["points"], "seed": inputs["seed"],
             "ranges": inputs["ranges"], "records": len(records), "complete": complete,
             "reused": reused, "seconds": round(seconds, 3),
+            "resumed_points": resumed,
             "points_per_s": (None if reused or seconds <= 0 else
-                             round(len({r["point"] for r in records}) / seconds, 4)),
+                             round(max(len({r["point"] for r in records}) - resumed, 0)
+                                   / seconds, 4)),
             "key": inputs["key"], "products": per,
             "front": [front_point(r) for r in front_rows],
             "files": {"table": str(out / TABLE_NAME), "figure": str(out / FIGURE_NAME),
@@ -639,6 +687,8 @@ def print_summary(s: dict) -> None:
     rate = "" if s["points_per_s"] is None else f", {s['points_per_s']:.3g} points/s"
     print(f"atlas of the jaw {s['jaw']}: {s['points']} target points, {s['records']} verdicts "
           + ("(reused from the store)" if s["reused"] else f"in {s['seconds']:.1f} s{rate}")
+          + (f" ({s['resumed_points']} points kept by a stopped run, not judged again)"
+             if s.get("resumed_points") else "")
           + ("" if s["complete"] else " (stopped: the points that finished are kept)"))
     for g in s["products"]:
         limits = ", ".join(f"{k} {v}" for k, v in sorted(g["binding_limits"].items()))
