@@ -1367,21 +1367,25 @@ class DieProject:
 
         Args:
             out: the export folder (new, empty or this die's).
-            cache: accepted as an array's export takes it; a die's export is one job, and
-                the solves it keeps go to the result store on their own.
+            cache: the store of finished jobs and solves, as an array's export takes it
+                (``None``: the working folder's, or the caller's open
+                :func:`tactcad.store.keeping_results` block).
             progress: told when the export starts and ends.
 
         Raises:
-            DesignError: ``out`` holds another design's export or files no export wrote.
+            DesignError: ``out`` holds another design's export or files no export wrote;
+                ``cache`` names no folder the store could be kept in.
         """
         import contextlib
         import io
 
         from tactcad.commands.die import export_die
+        from tactcad.store import keeping_results
 
+        kept = _working_folder_store() if cache is None else keeping_results(_store(cache))
         report = progress or _quiet
         report(f"exporting die {self.name} to {out}")
-        with contextlib.redirect_stdout(io.StringIO()):
+        with kept, contextlib.redirect_stdout(io.StringIO()):
             code = export_die(self.source, self._args(out=str(out)))
         report(f"exported die {self.name} to {out}")
         return code
@@ -1401,14 +1405,22 @@ def _working_folder_store():
 
 
 def _store(cache: str | Path | None | bool):
-    """The :class:`~tactcad.store.Store` that ``cache`` names."""
-    from tactcad.store import DEFAULT_STORE, Store
+    """The :class:`~tactcad.store.Store` that ``cache`` names.
+
+    Raises:
+        DesignError: naming ``cache``: neither True, False, None nor a path, or a folder the
+            store could not be kept in (:func:`tactcad.store.usable_cache_folder`).
+    """
+    from tactcad.errors import DesignError
+    from tactcad.store import CACHE_ALLOWED, DEFAULT_STORE, Store, usable_cache_folder
 
     if cache is True:
         return Store(DEFAULT_STORE)
     if cache is False or cache is None:
         return Store(None)
-    return Store(Path(cache))
+    if not isinstance(cache, (str, Path)) or not str(cache).strip():
+        raise DesignError("cache", cache, f"True, False, None or a path: {CACHE_ALLOWED}")
+    return Store(usable_cache_folder(str(cache), "cache"))
 
 
 class Parts(Mapping):

@@ -481,3 +481,39 @@ def kept_per_process(maxsize: int = 128) -> Callable[[Callable[..., T]], Callabl
         return called
 
     return decorate
+
+
+#: What ``--cache`` (and the API's ``cache``) may name.
+CACHE_ALLOWED = ("a folder tactcad can write: an existing writable folder, or a new one "
+                 "whose nearest existing parent is a writable folder (not a file)")
+
+
+def usable_cache_folder(text: str, option: str = "--cache") -> Path:
+    """The ``--cache`` folder as given, refused before any work when the store could not be
+    kept there: an existing file, a folder without write access, or a new folder under a
+    file or under a folder without write access (nothing is created here).
+
+    Args:
+        text: ``--cache`` as typed.
+        option: the name the refusal gives it (the API's ``cache`` argument).
+
+    Returns:
+        The folder's path.
+
+    Raises:
+        DesignError: naming ``--cache``, the value and what is allowed.
+    """
+    import os
+
+    from tactcad.errors import DesignError
+
+    folder = Path(text)
+    nearest = next((p for p in (folder, *folder.parents) if p.exists() or p.is_symlink()),
+                   Path("."))
+    if not nearest.is_dir():
+        why = ("it is an existing file" if nearest == folder
+               else f"{nearest} is not a folder")
+        raise DesignError(option, text, CACHE_ALLOWED, why)
+    if not os.access(nearest, os.W_OK | os.X_OK):
+        raise DesignError(option, text, CACHE_ALLOWED, f"{nearest} is not writable")
+    return folder

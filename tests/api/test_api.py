@@ -360,3 +360,22 @@ def test_check_refuses_an_out_no_export_can_be_written_to_before_solving(tmp_pat
     with pytest.raises(ExportPathError):
         tactcad.load(EXAMPLE_DESIGN).check(out=blocker / "x", cache=False)
     assert ran == []
+
+
+@pytest.mark.parametrize("cache, why", [("a_file", "it is an existing file"),
+                                        ("a_file/sub", "is not a folder"),
+                                        (3, "True, False, None or a path")])
+def test_an_unusable_cache_is_refused_naming_the_argument_before_any_work(tmp_path, cache, why):
+    (tmp_path / "a_file").write_text("x", encoding="utf-8")
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        project = tactcad.load(EXAMPLE_DESIGN)
+        for call in (lambda: project.export(out="out", cache=cache),
+                     lambda: project.check(out="out", cache=cache)):
+            with pytest.raises(DesignError) as err:
+                call()
+            assert err.value.field == "cache" and why in str(err.value)
+    finally:
+        os.chdir(cwd)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]  # nothing written

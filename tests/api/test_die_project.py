@@ -142,3 +142,16 @@ def test_a_die_projects_solves_are_kept_in_the_working_folders_store(tmp_path, m
     first = tactcad.load(EXAMPLE).budget()
     kept = [p for p in (tmp_path / STORE_FOLDER).rglob("*") if p.is_file()]
     assert kept and tactcad.load(EXAMPLE).budget() == first
+
+
+def test_a_die_projects_export_refuses_an_unusable_cache_before_any_work(tmp_path,
+                                                                        monkeypatch):
+    import tactcad
+    from tactcad.errors import DesignError
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a_file").write_text("x", encoding="utf-8")
+    with pytest.raises(DesignError) as err:
+        tactcad.load(EXAMPLE).export("out", cache="a_file")
+    assert err.value.field == "cache" and "it is an existing file" in str(err.value)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]

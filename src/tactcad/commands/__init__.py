@@ -20,6 +20,8 @@ from pathlib import Path
 from typing import Any, Callable
 
 from tactcad.commands.notices import print_heads
+# one rule for where the store may be kept: the commands' --cache and the API's cache
+from tactcad.store import CACHE_ALLOWED, usable_cache_folder  # noqa: F401 (re-exported)
 
 SET_EXAMPLE = "element.web_thickness_mm=0.3"
 
@@ -287,40 +289,6 @@ def store_from_args(args: argparse.Namespace):
     # a command that writes a project keeps its results where the project's commands look
     default = getattr(args, "default_store", None)
     return Store(default(args) if default is not None else DEFAULT_STORE)
-
-
-CACHE_ALLOWED = ("a folder tactcad can write: an existing writable folder, or a new one "
-                 "whose nearest existing parent is a writable folder (not a file)")
-
-
-def usable_cache_folder(text: str) -> Path:
-    """The ``--cache`` folder as given, refused before any work when the store could not be
-    kept there: an existing file, a folder without write access, or a new folder under a
-    file or under a folder without write access (nothing is created here).
-
-    Args:
-        text: ``--cache`` as typed.
-
-    Returns:
-        The folder's path.
-
-    Raises:
-        DesignError: naming ``--cache``, the value and what is allowed.
-    """
-    import os
-
-    from tactcad.errors import DesignError
-
-    folder = Path(text)
-    nearest = next((p for p in (folder, *folder.parents) if p.exists() or p.is_symlink()),
-                   Path("."))
-    if not nearest.is_dir():
-        why = ("it is an existing file" if nearest == folder
-               else f"{nearest} is not a folder")
-        raise DesignError("--cache", text, CACHE_ALLOWED, why)
-    if not os.access(nearest, os.W_OK | os.X_OK):
-        raise DesignError("--cache", text, CACHE_ALLOWED, f"{nearest} is not writable")
-    return folder
 
 
 def design_and_product(args: argparse.Namespace):
