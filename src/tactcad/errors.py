@@ -171,6 +171,12 @@ class PastRatingWarning(UserWarning):
     sample's K_obj outside the design's required K_obj range."""
 
 
+class CoarseReadingWarning(UserWarning):
+    """A written design reads K_obj only to within more than its own size (a K_obj
+    resolution over 100 %): it is written, but what it reads does not tell a tissue from one
+    twice or half as stiff."""
+
+
 class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
 

@@ -429,6 +429,14 @@ def test_a_force_or_stiffness_below_the_least_a_design_takes_is_refused_naming_i
     assert not (tmp_path / "x").exists()
 
 
+def written_resolution(design: Path) -> float:
+    """The K_obj resolution requirement (relative) the written design file verifies."""
+    import tactcad
+    from tactcad.studies.verification import requirements_of
+
+    return requirements_of(tactcad.load(design).plan).kobj_resolution_rel
+
+
 @pytest.mark.parametrize("ratio", ["1.05", "1.01"])
 def test_a_ratio_near_one_on_the_comb_designs_where_a_candidates_k_error_spans_it(tmp_path, ratio):
     # a candidate whose K error could make its measuring element as stiff as its reference
@@ -439,6 +447,24 @@ def test_a_ratio_near_one_on_the_comb_designs_where_a_candidates_k_error_spans_i
     assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
     written = tomllib.loads((out / "q9.toml").read_text("utf-8"))
     assert written["requirements"]["kr_over_km"] == float(ratio)
+    # a resolution written over 100 % is said: the lab learns the design barely reads K_obj
+    coarse = written_resolution(out / "q9.toml") > 1.0
+    said = "a reading does not tell a tissue from one twice or half as stiff" in r.stderr
+    assert said == coarse, r.stderr
+
+
+def test_a_design_that_reads_k_obj_coarser_than_its_size_is_written_with_a_warning(tmp_path):
+    out = tmp_path / "q9"
+    r = run_cli("design", "--jaw", "10", "--kr-over-km", "1.0000001", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.02", "--out", str(out), "--json")
+    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+    assert written_resolution(out / "q9.toml") > 1.0
+    warned = [w for w in json.loads(r.stdout)["warnings"] if "twice or half" in w]
+    assert len(warned) == 1 and "--kr-over-km" in warned[0]
+    fine = run_cli("design", "--jaw", "10", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                   "--full-scale-force", "0.02", "--out", str(tmp_path / "fine"), "--json")
+    assert fine.returncode == 0
+    assert not [w for w in json.loads(fine.stdout)["warnings"] if "twice or half" in w]
 
 
 def test_several_constructions_refusing_offer_each_ones_nearest_the_nearest_first():

@@ -398,6 +398,7 @@ def _run(args: argparse.Namespace) -> int:
     margins = design_margins(result.plan)
     if args.kobj_accuracy is not None:  # a miss is not written, as a failed requirement is not
         refuse_missed_accuracy(margins, args.kobj_accuracy)
+    warn_coarse_reading(result.plan)
     level, records = design_verification(result.plan, asked, margins, progress)
     report = design_report(result, level or "none", progress, margins)
     report["verify"] = verification_summary(asked, level, records)
@@ -970,6 +971,41 @@ def written_plan(data, path: Path):
                                     companions=companion_tables).plan
 
 
+#: Above this relative K_obj resolution a reading no longer tells K_obj from twice or half
+#: of it (eq. 3's resolution over the object's own stiffness).
+COARSE_RESOLUTION_REL = 1.0
+
+
+def warn_coarse_reading(plan) -> None:
+    """Warn when the K_obj resolution a written design derives for itself (its file states
+    none) is over :data:`COARSE_RESOLUTION_REL`: the design is written, as the lab asked,
+    and the lab is told that it reads K_obj only to within more than its own size.
+
+    Args:
+        plan: the written design's :class:`~tactcad.design.array_plan.Plan` (a stacked array
+            or a comb; nothing is said for another plan).
+    """
+    import warnings
+
+    from tactcad.design.array_plan import Plan
+    from tactcad.errors import CoarseReadingWarning
+    from tactcad.studies.verification import requirements_of
+
+    if not isinstance(plan, Plan):
+        return
+    req = requirements_of(plan)
+    if "kobj_resolution_rel" in req.stated or req.kobj_resolution_rel <= COARSE_RESOLUTION_REL:
+        return
+    lo, hi = req.kobj_range_N_per_mm
+    warnings.warn(
+        f"this design's K_obj resolution over {lo:.4g}-{hi:.4g} N/mm is written as "
+        f"{100 * req.kobj_resolution_rel:.4g} % (requirements.kobj_resolution_rel = "
+        f"{req.kobj_resolution_rel:.4g}; {req.reasons['kobj_resolution_rel']}): over "
+        f"{100 * COARSE_RESOLUTION_REL:g} % a reading does not tell a tissue from one twice or "
+        f"half as stiff; a K_r/K_m further from 1 (--kr-over-km), a larger --full-scale-force "
+        f"or --kobj-accuracy reads finer", CoarseReadingWarning, stacklevel=2)
+
+
 def refuse_missed_accuracy(records: list[dict], accuracy_rel: float) -> None:
     """Refuse a metal design whose ``kobj_accuracy_rel`` row fails at the closed form, as a
     base design's requirement the closed form fails is refused (:func:`failed_requirements`):
@@ -1165,6 +1201,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                           "no construction seats in a jaw")
     if args.kobj_accuracy is not None:
         result = with_kobj_accuracy(result, args.kobj_accuracy, refuse=True)
+    warn_coarse_reading(result.plan)
     data = dict(result.data)
     data["grasper_jaw"] = dict(room.table or {})  # the jaw it was designed for, in its scenes
     from tactcad.version import VERSION
