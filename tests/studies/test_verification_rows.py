@@ -283,3 +283,30 @@ def test_worst_and_error_is_the_worst_resolution_and_its_error_kept_once(plan):
     assert worst_and_error(units, rng, force, kept) == want and len(kept) == 1
     other = worst_and_error(units, rng, 2 * force, kept)
     assert other[0] != want[0] and len(kept) == 2
+
+
+@pytest.mark.parametrize("design", [EXAMPLE, EXAMPLE.parents[1] / "macro_array" / "macro_array.toml"],
+                         ids=["ti_array_2x3", "macro_array"])
+def test_the_readable_ranges_error_covers_what_the_k_errors_do_to_it(design):
+    # the range's error was the resolution's (which reads K ratios): at fem2d a range a K
+    # error of 8 % could move by as much was failed on a -7.7 % margin inside that error
+    from dataclasses import replace
+
+    import tactcad
+    from tactcad.studies.verification import (readable_range, requirements_of,
+                                              sensing_units, verification_matrix)
+
+    plan = tactcad.load(design).plan
+    req = requirements_of(plan)
+    units = sensing_units(plan, element_figures(plan, "closed-form"))
+    rng, force = req.kobj_range_N_per_mm, req.full_scale_force_N
+    span = readable_range(units, rng, force, req.kobj_resolution_rel)
+    moves = []
+    for sr in (-1, 1):
+        for sm in (-1, 1):
+            moved = readable_range(replace(units, read=tuple(units.shifted_by_error(sr, sm))),
+                                   rng, force, req.kobj_resolution_rel)
+            moves += [abs(moved[0] / span[0] - 1.0), abs(moved[1] / span[1] - 1.0)]
+    record = next(r for r in verification_matrix(plan, "closed-form")
+                  if r["requirement"] == "kobj_range_N_per_mm")
+    assert max(moves) > 0 and record["error_estimate_rel"] >= max(moves) * (1 - 1e-12)

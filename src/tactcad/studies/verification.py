@@ -36,7 +36,7 @@ Units: mm, N, MPa, N/mm.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace as _replaced
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
@@ -535,16 +535,48 @@ def kobj_records(units: SensingUnits, req: Requirements, force_N: float, model: 
     if units.read:
         worst, res_err = worst_and_error(units, rng, force_N, kept)
         span = readable_range(units, rng, force_N, req.kobj_resolution_rel)
+        span_err = readable_range_error_rel(units, rng, force_N, req.kobj_resolution_rel, span)
     else:
-        worst, res_err, span = math.inf, 0.0, None
+        worst, res_err, span, span_err = math.inf, 0.0, None, 0.0
     m_rng = min(rng[0] / span[0], span[1] / rng[1]) - 1.0 if span else -1.0
     return [_record("kobj_resolution_rel", req.kobj_resolution_rel, _finite_or_none(worst),
                     res_err, req.kobj_resolution_rel / worst - 1.0, model,
                     worst <= req.kobj_resolution_rel,
                     force_resolution_N={str(n): f for n, f in units.force_resolution_N.items()},
                     basis=READOUT_BASIS),
-            _record("kobj_range_N_per_mm", list(rng), list(span) if span else None, res_err,
+            _record("kobj_range_N_per_mm", list(rng), list(span) if span else None, span_err,
                     m_rng, model, m_rng >= 0)]
+
+
+def readable_range_error_rel(units: SensingUnits, rng, force_N: float, target_rel: float,
+                             span: tuple[float, float] | None) -> float:
+    """The relative error of :func:`readable_range`'s ends from the K errors of the
+    references and the measuring elements: the largest relative move of either end with each
+    K moved by its own error, every sign combination (as :func:`resolution_error_rel` moves
+    them); inf when a move leaves the range's centre unread. The readable range scales with
+    the elements' K, so its error is about theirs, not the resolution's (which reads their
+    ratios).
+
+    Args:
+        units: the sensing units. rng: the required (low, high) K_obj (N/mm).
+        force_N: the force (N). target_rel: the resolution the range is read within.
+        span: :func:`readable_range` of ``units`` (None: none read, error 0: the record
+            fails whatever the K).
+
+    Returns:
+        The relative error (dimensionless, >= 0, or inf).
+    """
+    if span is None:
+        return 0.0
+    worst = 0.0
+    for sr in (-1, 1):
+        for sm in (-1, 1):
+            shifted = _replaced(units, read=tuple(units.shifted_by_error(sr, sm)))
+            moved = readable_range(shifted, rng, force_N, target_rel)
+            if moved is None:
+                return math.inf
+            worst = max(worst, abs(moved[0] / span[0] - 1.0), abs(moved[1] / span[1] - 1.0))
+    return worst
 
 
 def rated_full_scale_force(plan: Plan) -> float:
