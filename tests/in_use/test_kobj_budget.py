@@ -515,10 +515,15 @@ def test_a_combs_crosstalk_term_reads_the_combs_own_level(ti_plan):
     for u in b.units:
         term = u["sources"]["stack_crosstalk"]
         assert "not_modelled" not in term and min(term["before_rel"]) > 0
-        assert np.allclose(term["after_rel"], np.array(term["before_rel"]) * r.error_estimate_rel)
+        # its decoupling leaves its error estimate of it, never more than all of it (the
+        # comb-beam level's estimate is over 100 %: the term grew after its correction)
+        left = min(r.error_estimate_rel, 1.0)
+        assert np.allclose(term["after_rel"], np.array(term["before_rel"]) * left)
+        assert all(a <= b for a, b in zip(term["after_rel"], term["before_rel"]))
     assert b.notes["stack_crosstalk_N_per_N"] == pytest.approx(r.crosstalk_rel, rel=1e-12)
     assert "(comb-beam)" in b.notes["stack_crosstalk_basis"]
     assert f"{r.error_estimate_rel:.3g}" in b.notes["stack_crosstalk_basis"]
+    assert ("remove nothing" in b.notes["stack_crosstalk_basis"]) == (r.error_estimate_rel >= 1)
     assert "| stack crosstalk | not modelled |" not in render(b)
     stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3,
                              force_gauge=calibration_gauge(ti_plan))

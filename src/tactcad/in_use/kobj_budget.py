@@ -492,7 +492,8 @@ def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(e) The neighbours' tip forces (every tip pressed by the same travel Δ, eq. 1) times
     each gauge's crosstalk in N per N of neighbour load at the construction's crosstalk
     level (:class:`CrosstalkTerm`), a fraction of each element's own force, read by the
-    coupled inversion; after the decoupling matrix, its level's error estimate of that."""
+    coupled inversion; after the decoupling matrix, its level's error estimate of that, at
+    most all of it (:func:`left_by_decoupling`)."""
     numbers, per_newton, error, _ = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     k = np.array([ctx.k_of(n) for n in numbers])
     # tip forces of every element at each K_obj: K_j K_obj Δ / (K_j + K_obj), shape (n, grid)
@@ -502,7 +503,14 @@ def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     e_m, e_r = coupled_deflections_mm(ctx, unit, op)
     rel = np.abs(reading_error_rel(ctx, unit, op.k_obj, de_m=seen[i_m] / (op.k_m * e_m),
                                    de_r=seen[i_r] / (op.k_r * e_r)))
-    return Contribution(rel, rel * error)
+    return Contribution(rel, rel * left_by_decoupling(error))
+
+
+def left_by_decoupling(error_rel: float) -> float:
+    """The fraction of the crosstalk a decoupling matrix leaves: its model's error estimate,
+    at most 1 (a matrix whose model may be off by more than the crosstalk itself is not worth
+    applying: it is left out and the whole term remains, never more)."""
+    return min(float(error_rel), 1.0)
 
 
 def _coupled_ratios(ctx: Context, k_obj: np.ndarray) -> dict[int, np.ndarray]:
@@ -1153,9 +1161,14 @@ def crosstalk_basis(plan, term: CrosstalkTerm) -> str:
     why = _crosstalk_reason(plan)
     if why:
         return f"not modelled, left out of the sums: {why}"
-    return (f"the largest force a gauge reads per newton on a neighbour's tip "
-            f"({term.level}); the decoupling matrix leaves {term.error_rel:.3g} of it (its "
-            f"error estimate)")
+    head = (f"the largest force a gauge reads per newton on a neighbour's tip "
+            f"({term.level}); ")
+    if term.error_rel >= 1.0:
+        return head + (f"its error estimate, {term.error_rel:.3g}, exceeds the term itself: a "
+                       f"decoupling matrix made from it would remove nothing, so all of it "
+                       f"remains")
+    return head + (f"the decoupling matrix leaves {term.error_rel:.3g} of it (its error "
+                   f"estimate)")
 
 
 class Source(NamedTuple):
