@@ -147,3 +147,30 @@ def test_a_sheet_path_leading_out_of_the_export_is_refused(tmp_path, capsys):
                      str(tmp_path / "pictures"), "--json"])
     error = json.loads(capsys.readouterr().out)["error"]
     assert code == 2 and "inside the export folder" in error["message"]
+
+
+def test_two_dies_differ_in_their_beams_and_derived_values_not_only_in_bytes(tmp_path):
+    # a die's manifest keeps its beams as "elements" and its derived values in "die": the
+    # diff read neither and said only that 8 files changed
+    def die_manifest(folder, force_N, depth_um):
+        folder.mkdir()
+        man = {"files": [{"path": "masks/die.gds", "sha256": str(force_N)}],
+               "elements": [{"element": 1, "part_name": "reference beam",
+                             "stiffness_N_per_mm": 3.58, "full_scale_force_N": force_N}],
+               "die": {"full_scale_force_N": force_N, "rows": 2,
+                       "cavity_depths_um": {"reference": depth_um},
+                       "root_peak_stress_MPa_at_rated_force": {"reference": 27e3 * force_N},
+                       "weibull": {"source": "a text the files' bytes report"}}}
+        (folder / "manifest.json").write_text(json.dumps(man), encoding="utf-8")
+        return folder
+
+    d = compare(die_manifest(tmp_path / "old", 0.008, 4.0),
+                die_manifest(tmp_path / "new", 0.006, 3.0))
+    assert d.elements == [{"element": 1, "changes": {
+        "full_scale_force_N": {"before": 0.008, "after": 0.006}}}]
+    derived = {r["name"]: (r["before"], r["after"], r["unit"]) for r in d.derived}
+    assert derived == {"die.full_scale_force_N": (0.008, 0.006, "N"),
+                       "die.cavity_depths_um.reference": (4.0, 3.0, "um"),
+                       "die.root_peak_stress_MPa_at_rated_force.reference":
+                           (27e3 * 0.008, 27e3 * 0.006, "MPa")}
+    assert "derived       die.cavity_depths_um.reference: 4 -> 3 um" in d.lines()

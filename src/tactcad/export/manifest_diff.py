@@ -38,7 +38,16 @@ ELEMENT_FIELDS = {
     "stress_MPa_per_N": "MPa/N", "full_scale_force_N": "N", "yield_limited_force_N": "N",
     "yield_safety_factor_at_full_scale": "", "gauge_strain_at_full_scale": "",
     "tip_deflection_mm_at_full_scale": "mm",
+    # a silicon die's beams (its manifest's "elements")
+    "stress_MPa_at_full_scale": "MPa", "strength_over_stress_at_rating": "",
 }
+#: A product's own table of derived values in its manifest (a silicon die's "die"), compared
+#: value by value as the array's "derived" list is.
+PRODUCT_SECTIONS = ("die",)
+#: Units read from a derived value's name ending (the house's unit suffixes).
+_UNIT_SUFFIXES = (("_N_per_mm", "N/mm"), ("_per_Pa", "1/Pa"), ("_um2", "um^2"), ("_um", "um"),
+                  ("_mm", "mm"), ("_MPa", "MPa"), ("_N", "N"), ("_Hz", "Hz"), ("_K", "K"),
+                  ("_V", "V"))
 PART_FIELDS = ("kind", "process", "material", "quantity", "volume_mm3", "bbox_mm")
 SHEET_KINDS = ("drawing-svg", "drawing-assembly")
 OLD_RGB, NEW_RGB = (220, 30, 30), (30, 80, 230)
@@ -65,7 +74,8 @@ def read_manifest(folder: str | Path) -> dict:
 
 
 #: Manifest lists compared by key: section -> (key field, its type).
-_KEYED = {"files": ("path", str), "strength": ("element", int), "derived": ("name", str)}
+_KEYED = {"files": ("path", str), "strength": ("element", int), "elements": ("element", int),
+          "derived": ("name", str)}
 
 
 _TYPE_WORDS = {str: "text", int: "an integer"}
@@ -214,7 +224,51 @@ def _parts(old: dict, new: dict, old_files, new_files) -> dict:
 
 
 def _by_element(man: dict) -> dict[int, dict]:
-    return {r["element"]: r for r in man.get("strength", []) if "element" in r}
+    """The element records: an array's "strength" list, a die's "elements" (its beams)."""
+    records = man.get("strength") or man.get("elements") or []
+    return {r["element"]: r for r in records if "element" in r}
+
+
+def _unit_of(name: str) -> str:
+    """The unit a dotted name gives: the innermost part ending in a unit suffix
+    (``cavity_depths_um.reference``: um), else a unit word inside it
+    (``root_peak_stress_MPa_at_rated_force``: MPa); "" for none."""
+    for part in reversed(name.split(".")):
+        found = next((unit for suffix, unit in _UNIT_SUFFIXES if part.endswith(suffix)), "")
+        if found:
+            return found
+        words = [w for w in part.split("_") if w in ("MPa", "um", "mm", "Hz")]
+        if words:
+            return words[-1]
+    return ""
+
+
+def _flat_values(table: Mapping, prefix: str = "") -> dict[str, Any]:
+    """A product table's numbers (and lists of numbers) by dotted name, nested tables
+    flattened; texts (sources, notes) are left out: the files' bytes report those."""
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            out.update(_flat_values(value, name + "."))
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            out[name] = value
+        elif isinstance(value, list) and value and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+            out[name] = value
+    return out
+
+
+def _derived_records(man: dict) -> list[dict]:
+    """The manifest's derived values: its "derived" list, and each product section's
+    numbers (:data:`PRODUCT_SECTIONS`) named ``section.key`` with the unit their name gives."""
+    records = list(man.get("derived", []))
+    for section in PRODUCT_SECTIONS:
+        table = man.get(section)
+        if isinstance(table, Mapping):
+            records += [{"name": f"{section}.{k}", "value": v, "unit": _unit_of(k)}
+                        for k, v in _flat_values(table).items()]
+    return records
 
 
 def _elements(old: dict, new: dict) -> list[dict]:
@@ -231,8 +285,8 @@ def _elements(old: dict, new: dict) -> list[dict]:
 
 
 def _derived(old: dict, new: dict) -> list[dict]:
-    a = {d["name"]: d for d in old.get("derived", [])}
-    b = {d["name"]: d for d in new.get("derived", [])}
+    a = {d["name"]: d for d in _derived_records(old)}
+    b = {d["name"]: d for d in _derived_records(new)}
     out = []
     for name in list(a) + [n for n in b if n not in a]:
         before, after = a.get(name, {}).get("value"), b.get(name, {}).get("value")
