@@ -287,26 +287,38 @@ def test_worst_and_error_is_the_worst_resolution_and_its_error_kept_once(plan):
 
 @pytest.mark.parametrize("design", [EXAMPLE, EXAMPLE.parents[1] / "macro_array" / "macro_array.toml"],
                          ids=["ti_array_2x3", "macro_array"])
-def test_the_readable_ranges_error_covers_what_the_k_errors_do_to_it(design):
-    # the range's error was the resolution's (which reads K ratios): at fem2d a range a K
-    # error of 8 % could move by as much was failed on a -7.7 % margin inside that error
+@pytest.mark.parametrize("widen", [1.0, 1.12])
+def test_the_k_obj_ranges_verdict_holds_exactly_where_every_k_error_keeps_its_sign(design, widen):
+    # the range's error was the resolution's (which reads K ratios): at fem2d a range whose
+    # margin a K error of 8 % could turn was failed on a -7.7 % margin
     from dataclasses import replace
 
     import tactcad
+    from tactcad.design.array_plan import with_overrides
     from tactcad.studies.verification import (readable_range, requirements_of,
                                               sensing_units, verification_matrix)
 
     plan = tactcad.load(design).plan
+    lo, hi = requirements_of(plan).kobj_range_N_per_mm
+    plan = plan_from_dict(with_overrides(plan.raw, {  # widened: a margin below zero
+        "requirements.kobj_range_N_per_mm": [lo / widen, hi * widen]}))
     req = requirements_of(plan)
     units = sensing_units(plan, element_figures(plan, "closed-form"))
     rng, force = req.kobj_range_N_per_mm, req.full_scale_force_N
-    span = readable_range(units, rng, force, req.kobj_resolution_rel)
-    moves = []
-    for sr in (-1, 1):
-        for sm in (-1, 1):
-            moved = readable_range(replace(units, read=tuple(units.shifted_by_error(sr, sm))),
-                                   rng, force, req.kobj_resolution_rel)
-            moves += [abs(moved[0] / span[0] - 1.0), abs(moved[1] / span[1] - 1.0)]
+
+    def margin(u) -> float:
+        a, b = readable_range(u, rng, force, req.kobj_resolution_rel)
+        return min(rng[0] / a, b / rng[1]) - 1.0
+
+    shifted = [margin(replace(units, read=tuple(units.shifted_by_error(sr, sm))))
+               for sr in (-1, 1) for sm in (-1, 1)]
     record = next(r for r in verification_matrix(plan, "closed-form")
                   if r["requirement"] == "kobj_range_N_per_mm")
-    assert max(moves) > 0 and record["error_estimate_rel"] >= max(moves) * (1 - 1e-12)
+    m = record["margin_rel"]
+    assert m == pytest.approx(margin(units), rel=1e-12)
+    towards_edge = [m - x if m >= 0 else x - m for x in shifted]
+    assert record["error_estimate_rel"] == pytest.approx(max(0.0, *towards_edge), abs=1e-15)
+    # decided exactly where every move of the K keeps the margin's sign
+    same_sign = all((x >= 0) == (m >= 0) for x in shifted)
+    assert (record["verdict"] != "undecided") == same_sign or \
+        abs(abs(m) - record["error_estimate_rel"]) < 1e-12, record

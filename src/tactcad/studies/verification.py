@@ -550,12 +550,12 @@ def kobj_records(units: SensingUnits, req: Requirements, force_N: float, model: 
 
 def readable_range_error_rel(units: SensingUnits, rng, force_N: float, target_rel: float,
                              span: tuple[float, float] | None) -> float:
-    """The relative error of :func:`readable_range`'s ends from the K errors of the
-    references and the measuring elements: the largest relative move of either end with each
-    K moved by its own error, every sign combination (as :func:`resolution_error_rel` moves
-    them); inf when a move leaves the range's centre unread. The readable range scales with
-    the elements' K, so its error is about theirs, not the resolution's (which reads their
-    ratios).
+    """How far the K errors of the references and the measuring elements can move the K_obj
+    range record's margin towards its verdict's edge: each K moved by its own error, every
+    sign combination (as :func:`resolution_error_rel` moves them), the largest fall of the
+    margin (``min(lo / a, b / hi) - 1`` of the readable range ``(a, b)``) where it is met,
+    the largest rise where it is not; inf when a move leaves the range's centre unread. The
+    range's margin is then decided exactly where every such move keeps its sign.
 
     Args:
         units: the sensing units. rng: the required (low, high) K_obj (N/mm).
@@ -568,6 +568,8 @@ def readable_range_error_rel(units: SensingUnits, rng, force_N: float, target_re
     """
     if span is None:
         return 0.0
+    lo, hi = rng
+    margin = min(lo / span[0], span[1] / hi) - 1.0
     worst = 0.0
     for sr in (-1, 1):
         for sm in (-1, 1):
@@ -575,7 +577,8 @@ def readable_range_error_rel(units: SensingUnits, rng, force_N: float, target_re
             moved = readable_range(shifted, rng, force_N, target_rel)
             if moved is None:
                 return math.inf
-            worst = max(worst, abs(moved[0] / span[0] - 1.0), abs(moved[1] / span[1] - 1.0))
+            change = min(lo / moved[0], moved[1] / hi) - 1.0 - margin
+            worst = max(worst, -change if margin >= 0 else change)
     return worst
 
 
