@@ -12,7 +12,8 @@ planned as the die command plans it and writing no file of theirs (the result st
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
 a temperature step, the jaw's pin: the die's mount places it) is refused by name rather than
-ignored (:data:`DIE_OPTIONS` are those a die's view reads).
+ignored (:data:`DIE_OPTIONS` are those a die's view reads); ``--model`` is taken at the
+levels each view computes (:data:`DIE_MODEL_LEVELS`) and any other refused naming them.
 """
 
 from __future__ import annotations
