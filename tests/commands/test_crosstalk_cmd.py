@@ -179,7 +179,7 @@ def test_a_stack_level_on_a_die_is_refused_before_any_solve_and_help_names_the_d
         assert r.returncode == 2 and "Traceback" not in r.stderr, r.stdout + r.stderr
         error = json.loads(r.stdout)["error"]
         assert (error["field"], error["value"]) == ("--model", level)
-        assert error["allowed"].startswith(dx.CROSSTALK_LEVEL)
+        assert error["allowed"].startswith(f"one of {dx.CROSSTALK_LEVEL} for a die")
         assert error["alternatives"][0]["option"] == f"--model {dx.CROSSTALK_LEVEL}"
     from tactcad.cli import build_parser, command_parser
 

@@ -100,7 +100,8 @@ def test_missing_and_unknown_keys(design_data):
     with pytest.raises(DesignError, match="missing") as info:
         plan_from_dict(design_data)
     assert info.value.field == "element.notch_radius_mm"
-    assert str(info.value).endswith("element.notch_radius_mm (not given): allowed a value (missing)")
+    assert str(info.value).endswith(
+        "element.notch_radius_mm (not given): allowed 0 < value <= 2 mm (missing)")
     del design_data["element"]
     with pytest.raises(DesignError) as info:
         plan_from_dict(design_data)

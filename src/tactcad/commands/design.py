@@ -1332,6 +1332,14 @@ def row_process_verdicts(plan) -> dict[str, list[str]]:
                    if not r.passed] for name in process_names()}
 
 
+def counted_words(counted: int) -> str:
+    """How many of a jaw's candidates count, as a clause: ``2 of them count``, ``1 of them
+    counts``, ``none of them counts``."""
+    if counted == 0:
+        return "none of them counts"
+    return f"{counted} of them count" + ("s" if counted == 1 else "")
+
+
 def print_jaw_report(r: dict) -> None:
     from tactcad.checks.check_result import counts_text
 
@@ -1345,7 +1353,7 @@ def print_jaw_report(r: dict) -> None:
           f"{', '.join(f'{w:g}' for w in r['webs_mm'])} mm, stop gaps "
           f"{', '.join(f'{g:g}' for g in r['stop_gaps_mm'])} mm")
     counted = sum(c["counts"] for c in r["candidates"])
-    print(f"  {len(r['candidates'])} candidates, {counted} count")
+    print(f"  {len(r['candidates'])} candidates, {counted_words(counted)}")
     if r["fasteners"]:
         got, before = r["fasteners"][-1], r["fasteners"][:-1]
         print(f"  fasteners: {got['screw_size']} screws, {got['dowel_diameter_mm']:g} mm dowels"

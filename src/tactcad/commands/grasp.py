@@ -53,8 +53,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_design_arg(p)
     add_cache_args(p)
     how = p.add_mutually_exclusive_group()
-    how.add_argument("--angle-deg", type=ranged("angle_deg"), default=None,
-                     help="the jaw's closing angle above the opposing jaw (degrees)")
+    # its range is the jaw's own, 0 ... its opening: checked against the jaw, one refusal
+    how.add_argument("--angle-deg", type=number(unit="degrees"), default=None,
+                     help="the jaw's closing angle above the opposing jaw (degrees, 0 ... the "
+                          "jaw's opening)")
     how.add_argument("--force-N", dest="force_N", type=ranged("force_N"),
                      default=None, help="the grasp force the tips put on the tissue (N, "
                                         "1e-06 ... 1000: a smaller force's tip deflections "

@@ -284,7 +284,15 @@ def grasp_option_error(exc, args: Any):
         The error naming the option, or ``exc`` when no option sets its field.
     """
     from tactcad.errors import DesignError
+    from tactcad.in_use.grasp_experiment import ACTIVE_SET_PASSES, UnsettledContact
 
+    slab = getattr(args, "slab_thickness_mm", None)
+    if isinstance(exc, UnsettledContact) and slab is not None:
+        return DesignError("--slab-thickness-mm", slab,
+                           f"a slab on which the contact settles (thicker than {slab:g} mm)",
+                           f"the posts' contact (their stops and lift-off) did not settle "
+                           f"within {ACTIVE_SET_PASSES} passes of its solve on a {slab:g} mm "
+                           "slab: give a thicker one")
     option = GRASP_OPTION_OF.get(exc.field)
     if option is None:
         return exc

@@ -225,8 +225,14 @@ def solve_tips(travel_mm, stiffness_N_per_mm, engage_mm, compliance) -> TipSolut
             return TipSolution(d, deflection, force, element, force - element, engaged, contact)
         contact &= ~lifted
         engaged = new_engaged & contact
-    raise DesignError("grasp", "the stops and lift-off did not settle",
-                      f"a settled contact within {ACTIVE_SET_PASSES} passes")
+    raise UnsettledContact("grasp", "the stops and lift-off did not settle",
+                           f"a settled contact within {ACTIVE_SET_PASSES} passes")
+
+
+class UnsettledContact(DesignError):
+    """The tips' contact (their stops and lift-off) did not settle in
+    :data:`ACTIVE_SET_PASSES` passes of :func:`solve_tips`: on a very thin tissue layer;
+    a command names its ``--slab-thickness-mm`` (:func:`tactcad.commands.options.grasp_option_error`)."""
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ import numpy as np
 
 from tactcad.mechanics.calibration import (K_SENSOR_N_PER_MM, Calibration, CalibrationData,
                                            CalibrationError, fit_calibration)
-from tactcad.mechanics.measured_io import ReadInfo, read_measured
+from tactcad.mechanics.measured_io import ReadInfo, TooFewReadings, read_measured
 
 #: A reading's element deflection below -this share of the element's largest Z travel is
 #: negative beyond what the force gauge's noise explains at Z = 0.
@@ -79,6 +79,10 @@ def read_calibration(path, option: str = "--data", encoding: str | None = None,
     """
     try:
         data, info = read_measured(path, encoding, mapping, default_k_sensor=default_k_sensor)
+    except TooFewReadings as exc:  # an element the design has not is the first thing wrong
+        if element_numbers is not None:
+            _check_element_numbers(exc.places, str(path), element_numbers, option)
+        raise _of_option(exc, option, str(path)) from None
     except CalibrationError as exc:
         raise _of_option(exc, option, str(path)) from None
     if element_numbers is not None:
@@ -103,14 +107,22 @@ def _of_option(exc: CalibrationError, option: str, path: str) -> CalibrationErro
 
 def _check_elements(data: Mapping[int, CalibrationData], info: ReadInfo,
                     numbers: Sequence[int], option: str) -> None:
+    _check_element_numbers({e: info.places.get(e, ("line ?",)) for e in data}, info.path,
+                           numbers, option)
+
+
+def _check_element_numbers(places: Mapping[int, Sequence[str]], path: str,
+                           numbers: Sequence[int], option: str) -> None:
+    """Refuse the first element of ``places`` (element -> where its readings are) that is
+    none of the design's ``numbers``."""
     known = sorted(set(numbers))
     span = (f"{known[0]} ... {known[-1]}" if known == list(range(known[0], known[-1] + 1))
             else ", ".join(map(str, known)))
-    for element in data:
+    for element, where in places.items():
         if element not in known:
-            place = info.places.get(element, ("line ?",))[0]
+            place = (where or ("line ?",))[0]
             allowed = f"element numbers of the design, {span}"
-            raise CalibrationError(f"{option} = {info.path}: {place}, column element = "
+            raise CalibrationError(f"{option} = {path}: {place}, column element = "
                                    f"{element}: element {element} is not in the design: "
                                    f"allowed {allowed}", "element", element, allowed)
 

@@ -319,14 +319,25 @@ class _Readings:
         out = {}
         for element, rows in self.by_element.items():
             if len(rows) < 3:
-                raise CalibrationError(f"{where}: element {element}: readings = {len(rows)}: "
-                                       "allowed >= 3", "readings", len(rows),
-                                       ">= 3 readings per element")
+                raise TooFewReadings(f"{where}: element {element}: readings = {len(rows)}: "
+                                     "allowed >= 3", "readings", len(rows),
+                                     ">= 3 readings per element", self.places_of())
             z, f, v = (np.array(c, dtype=float) for c in zip(*rows))
             for a in (z, f, v):
                 a.flags.writeable = False
             out[element] = CalibrationData(z, f, v, float(k_sensor))
         return out
+
+
+class TooFewReadings(CalibrationError):
+    """An element with fewer than 3 readings; ``places`` holds every element's places in the
+    file (element -> ``line 12`` ...), so that an element the design has not is refused
+    first (:func:`tactcad.mechanics.calibration_file.read_calibration`)."""
+
+    def __init__(self, message: str, field: str, value: object, allowed: str,
+                 places: dict[int, tuple[str, ...]]):
+        super().__init__(message, field, value, allowed)
+        self.places = places
 
 
 def _integer(x: float, where: str, column: str | None = None) -> int:

@@ -316,7 +316,8 @@ class KobjThermalError:
 
 def _part_figures(plan: Plan, chain: ReadoutChain, model: str,
                   stiffness: dict[str, float] | None) -> dict[str, dict]:
-    """Per distinct part: K (N/mm), its error estimate and the grid strain per newton."""
+    """Per distinct part: K (N/mm), its error estimate, the grid strain per newton and the
+    grid strain's own error estimate (``stiffness --json``'s ``grid_strain_error_rel``)."""
     from tactcad.mechanics.ladder import estimate
 
     out = {}
@@ -326,8 +327,9 @@ def _part_figures(plan: Plan, chain: ReadoutChain, model: str,
             k, err = est.stiffness_N_per_mm, est.error_estimate_rel
         else:
             k, err = stiffness[name], None
-        eps = grid_strain_per_N(g, plan.material, chain, model)["grid"]
-        out[name] = {"K": k, "err": err, "eps": eps}
+        read = grid_strain_per_N(g, plan.material, chain, model)
+        out[name] = {"K": k, "err": err, "eps": read["grid"],
+                     "eps_err": float(read.get("grid_error_rel", read["error_rel"]))}
     return out
 
 
@@ -471,6 +473,8 @@ NOTES = ["zero_drift_N_per_K: thermal output (TN-504, (1+K_t)/(1-0.285 K_t)(alph
          "drift_N_per_K: |zero| + F_FS |span| per kelvin (worst case, full scale)",
          "self_heating_offset_N: the grid warmer than its substrate, -(1+K_t)/(1-0.285 K_t) "
          "alpha_STC dT_grid / strain per N; an offset at switch-on, removed by the tare",
+         "error_estimate_rel: the element's K's relative error estimate, and "
+         "grid_strain_error_rel its grid_strain_per_N's, as `stiffness` names them",
          "kobj_error_rel_per_K: eq. 1-3, worst |zero| + |span| over the K_obj range at the "
          "lowest force fraction (reference element at that fraction of full scale); the zero "
          "part scales as 1/F, so the full-scale figure is the best case"]
@@ -547,7 +551,9 @@ def thermal_report(plan: Plan, requirements, model: str = "closed-form",
         span_N = F * abs(span)
         rec = {"element": slot.number, "part": slot.geometry.part_name,
                "role": "reference" if slot.number == ref.number else "measuring",
-               "grid_strain_per_N": d["eps"], "error_estimate_rel": d["err"],
+               # K's error as `stiffness --json` names it; the grid strain's beside it
+               "grid_strain_per_N": d["eps"], "grid_strain_error_rel": d["eps_err"],
+               "error_estimate_rel": d["err"],
                "apparent_force_N_per_K": app / d["eps"],
                "lead_wire_force_N_per_K": leads["zero_strain_per_K"] / d["eps"],
                "zero_drift_N_per_K": zero,

@@ -316,6 +316,22 @@ def _keys_of(model: type[BaseModel] | None) -> str:
         and not isinstance(model.model_fields, _AnyKey) else ""
 
 
+def _allowed_words(limits: Limits) -> str:
+    """A field's allowed values in the words its refusal of a wrong value uses (a missing
+    key is refused with them too)."""
+    if limits.kind == "text":
+        return f"one line of text, 1 ... {MAX_TEXT} characters, no control characters"
+    if limits.kind == "file":
+        return FILE_NAME_ALLOWED
+    if limits.kind == "name":
+        return NAME_ALLOWED
+    if limits.kind in ("choice", "list", "described"):
+        return limits.unit
+    if limits.kind == "integer":
+        return f"an integer {limits.lo} ... {limits.hi}"
+    return limits.text()
+
+
 def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> DesignError:
     """One pydantic error as a :class:`DesignError` with field, value, allowed range, reason."""
     loc = tuple(err["loc"])
@@ -323,8 +339,9 @@ def wording(err: Mapping[str, Any], model: type[BaseModel], file: str) -> Design
     value = err.get("input")
     kind = err["type"]
     why = limits.why if limits else ""
-    if kind == "missing":  # a whole table, or one key of a table
-        wanted = f"a [{field}] table" if section is not None else "a value"
+    if kind == "missing":  # a whole table, or one key of a table: what it may hold
+        wanted = (f"a [{field}] table" if section is not None else
+                  _allowed_words(limits) if limits is not None else "a value")
         return DesignError(field, None, wanted, "missing", file)
     if kind == "extra_forbidden":
         parent_name, _, parent = _field_at(model, loc[:-1]) if len(loc) > 1 else ("", None, model)

@@ -12,7 +12,8 @@ planned as the die command plans it and writing no file of theirs (the result st
 
 An option of the array command that has no meaning for a die (a ladder level, an element,
 a temperature step, the jaw's pin: the die's mount places it) is refused by name rather than
-ignored (:data:`DIE_OPTIONS` are those a die's view reads).
+ignored (:data:`DIE_OPTIONS` are those a die's view reads); ``--model`` is taken at the
+levels each view computes (:data:`DIE_MODEL_LEVELS`) and any other refused naming them.
 """
 
 from __future__ import annotations
@@ -30,15 +31,49 @@ from tactcad.products.silicon_die.studies.die_verification import die_verificati
 DIE_OPTIONS: dict[str, frozenset] = {
     "grasp": frozenset({"angle_deg", "force_N", "slab_thickness_mm", "profile", "kobj",
                         "opening_deg", "coupling"}),
-    "strength": frozenset({"model"}), "stiffness": frozenset({"model"}),
     "crosstalk": frozenset({"model"}),
     "tolerance": frozenset({"samples", "seed", "kobj", "distribution"})}
+
+
+#: The stiffness levels a die's beams are solved at (the die's ladder).
+DIE_STIFFNESS_LEVELS = ("closed-form", "fem3d")
+#: The ``--model`` levels each die view computes at, by command (crosstalk has its own,
+#: :func:`check_die_crosstalk_level`); ``--model`` left at the array command's default
+#: (``auto`` for verify) is the first.
+DIE_MODEL_LEVELS: dict[str, tuple[str, ...]] = {
+    "modal": ("closed-form",), "budget": ("closed-form",), "readout": ("closed-form",),
+    "thermal": ("closed-form",), "verify": ("closed-form",), "grasp": ("closed-form",),
+    "strength": ("closed-form",), "stiffness": DIE_STIFFNESS_LEVELS}
+
+
+def die_model(args: argparse.Namespace, command: str) -> str:
+    """The level ``tactcad command`` computes a die at: ``--model`` when it is one of the
+    die's levels for the command (:data:`DIE_MODEL_LEVELS`), the first of them when it is
+    left out or at the array command's default.
+
+    Raises:
+        DesignError: ``--model``, its value and the levels the command takes on a die.
+    """
+    levels = DIE_MODEL_LEVELS.get(command, ("closed-form",))
+    model = getattr(args, "model", None)
+    default = (getattr(args, "option_defaults", None) or {}).get("model")
+    if model is None or model == default and model not in levels:
+        return levels[0]
+    if model not in levels:
+        raise DesignError("--model", model, "one of " + ", ".join(levels) + " for a die",
+                          f"`tactcad {command}` on a silicon die computes at "
+                          + ("this level" if len(levels) == 1 else "these levels"))
+    return model
 
 
 def _refuse_array_options(args: argparse.Namespace, command: str, design: Path) -> None:
     from tactcad.commands.options import COMMON_OPTIONS, options_given
 
-    given = options_given(args, COMMON_OPTIONS | DIE_OPTIONS.get(command, frozenset()))
+    takes_model = {"model"} if command in DIE_MODEL_LEVELS else set()
+    given = options_given(args, COMMON_OPTIONS | DIE_OPTIONS.get(command, frozenset())
+                          | takes_model)
+    if takes_model:
+        die_model(args, command)
     if given:
         option, value = given[0]
         raise DesignError(option, value, f"no value for a die's design ({design.name})",
@@ -178,7 +213,7 @@ def check_die_crosstalk_level(model: str | None) -> None:
 
     if model in (None, CROSSTALK_LEVEL):
         return
-    raise DesignError("--model", model, f"{CROSSTALK_LEVEL} for a die (its only crosstalk "
+    raise DesignError("--model", model, f"one of {CROSSTALK_LEVEL} for a die (its only crosstalk "
                       f"level: 3D FE through its handle and die attach, {CROSSTALK_COST})",
                       f"{model} models an array's coupling (a clamped stack of bases and "
                       "spacers, or a comb's row sheets), which a silicon die has not",
@@ -420,30 +455,14 @@ def rated_words(rated: dict[str, float]) -> str:
 def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.studies.die_reports import strength_report
 
-    _only_closed_form(args, "strength")
     report, lines = strength_report(_planned(design, args).plan)
     return {"design": str(design), **report}, lines
-
-
-#: The stiffness levels a die's beams are solved at (the die's ladder).
-DIE_STIFFNESS_LEVELS = ("closed-form", "fem3d")
-
-
-def _only_closed_form(args: argparse.Namespace, command: str,
-                      levels: tuple[str, ...] = ("closed-form",)) -> None:
-    model = getattr(args, "model", "closed-form")
-    if model not in levels:
-        raise DesignError("--model", model, "one of " + ", ".join(levels) + " for a die",
-                          f"`tactcad {command}` on a silicon die solves its beams at these "
-                          "levels")
 
 
 def _stiffness(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.studies.die_reports import stiffness_report
 
-    _only_closed_form(args, "stiffness", DIE_STIFFNESS_LEVELS)
-    report, lines = stiffness_report(_planned(design, args).plan,
-                                     getattr(args, "model", "closed-form"))
+    report, lines = stiffness_report(_planned(design, args).plan, die_model(args, "stiffness"))
     return {"design": str(design), **report}, lines
 
 
