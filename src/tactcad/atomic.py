@@ -15,9 +15,11 @@ from typing import Callable, Iterator
 
 
 @contextlib.contextmanager
-def atomic_path(target: str | Path) -> Iterator[Path]:
+def atomic_path(target: str | Path, noted: bool = True) -> Iterator[Path]:
     """Yield a temporary path beside ``target``; on success it replaces ``target``
-    (``os.replace``, atomic on POSIX), on any error it is removed."""
+    (``os.replace``, atomic on POSIX), on any error it is removed. ``noted``: the file
+    counts among what an interrupted run says it wrote (:func:`note_changed`); False for
+    a store's entries, which are no file of the user's."""
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
     try:
@@ -32,7 +34,7 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
         with open(tmp_path, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp_path, target)
-        if not any(".staging-" in part for part in target.parent.parts):  # a published file
+        if noted and not any(".staging-" in part for part in target.parent.parts):  # published
             note_changed(target)
     except OSError as exc:  # name the file being written, not its temporary name
         if exc.filename not in (None, str(tmp_path)) or exc.errno is None:
@@ -385,8 +387,11 @@ def write_atomic(target: str | Path, writer: Callable[[Path], object]) -> Path:
     return Path(target)
 
 
-def write_bytes_atomic(target: str | Path, data: bytes) -> Path:
-    return write_atomic(target, lambda p: p.write_bytes(data))
+def write_bytes_atomic(target: str | Path, data: bytes, noted: bool = True) -> Path:
+    """Write ``data`` to ``target`` atomically (``noted``: see :func:`atomic_path`)."""
+    with atomic_path(target, noted) as tmp:
+        tmp.write_bytes(data)
+    return Path(target)
 
 
 # ---------------------------------------------------------------------------

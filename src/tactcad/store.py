@@ -196,7 +196,9 @@ class Store:
         path = self._memo_path(key)
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
-            write_bytes_atomic(path, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+            # a store entry, not an output: an interrupt's line names no store file
+            write_bytes_atomic(path, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL),
+                               noted=False)
         except OSError:
             pass
 
@@ -212,7 +214,10 @@ class Store:
         return value
 
     def keep(self, key: str, staging: Path, records: Sequence[dict]) -> None:
-        """Store a finished job's files (found in ``staging``) and records.
+        """Store a finished job's files (found in ``staging``) and records, in one
+        rename of a finished temporary folder: an export keeps each job as it
+        finishes, so a run stopped (Ctrl-C) or killed later leaves its finished jobs
+        to the next run, and one stopped in the middle of a keep leaves no entry.
         Best effort: a store that cannot be written (read-only, disk full)
         costs only the next run's time."""
         if self.root is None:
@@ -233,9 +238,11 @@ class Store:
             sums = {r["path"]: file_sha256(tmp / "files" / r["path"]) for r in records}
             (tmp / "sums.json").write_text(json.dumps(sums), encoding="utf-8")
             os.rename(tmp, entry)
-        except OSError:
+        except BaseException as exc:  # a write error, or a stop in the middle of the copy
             if tmp is not None:
                 shutil.rmtree(tmp, ignore_errors=True)
+            if not isinstance(exc, OSError):
+                raise
 
 
 # ---------------------------------------------------------------------------

@@ -172,6 +172,7 @@ def test_warnings_a_worker_job_issued_keep_their_error_for_the_runs_closing_line
     from tactcad.commands.notices import WarningLines
     from tactcad.export import worker
     from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
+    from tactcad.store import Store
 
     errors = (0.021, 0.027, 0.024)
 
@@ -182,7 +183,8 @@ def test_warnings_a_worker_job_issued_keep_their_error_for_the_runs_closing_line
         return [{"path": "p", "part": "p", "kind": "test"}]
 
     job = types.SimpleNamespace(needs=(), key="k", make=make)
-    monkeypatch.setattr(worker, "_INHERITED", {"run": None, "jobs": {"j": job}})
+    run = types.SimpleNamespace(store=Store(None), staging=None)  # the worker keeps nothing
+    monkeypatch.setattr(worker, "_INHERITED", {"run": run, "jobs": {"j": job}})
     sent = pickle.loads(pickle.dumps(worker._run_job("j", pickle.dumps({}))))  # as the pool
     future: Future = Future()
     future.set_result(sent)

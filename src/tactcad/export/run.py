@@ -87,6 +87,12 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     run's second process (:mod:`tactcad.export.worker`): ``session``'s when
     given with the ``planner`` that made ``jobs`` (``planner(run)``, sent to
     it), else one forked for this run when one can be.
+
+    Each job run is kept in ``store`` as soon as it finishes (its entry written
+    in one step, :meth:`~tactcad.store.Store.keep`; the worker keeps its own jobs
+    likewise), so a run stopped or killed part-way leaves its finished jobs to the
+    next run; the export folder itself is still replaced only by a whole run
+    (:func:`_write_locked`).
     """
     done: dict[str, list[dict]] = {}
     todo = []
@@ -116,6 +122,11 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     futures = {}
     started = {}
 
+    def finished(name: str, records: list[dict]) -> None:
+        """``name`` is done: its records noted and its files kept in the store."""
+        done[name] = records
+        store.keep(by_name[name].key, run.staging, records)
+
     def collect_reads(job: Job) -> None:
         """Collect the worker's jobs whose files ``job`` reads."""
         for name in job.after:
@@ -127,12 +138,13 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
         are collected; run here if the worker died before finishing it."""
         collect_reads(by_name[name])
         try:
-            done[name] = futures[name].result()
+            records = futures[name].result()
             run.worker_made.append(name)
         except BrokenProcessPool:
             run.log(f"  the worker process ended early; {name} runs in this process")
             remove_partial_files(run.staging)  # what the worker was writing when it died
-            done[name] = by_name[name].make(run)
+            records = by_name[name].make(run)
+        finished(name, records)
 
     try:
         # each of the worker's jobs is handed over as soon as its own solids are built, so
@@ -148,12 +160,12 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             job = _next_here(here, futures, done, run, prepared)
             here.remove(job)
             collect_reads(job)
-            done[job.name] = job.make(run)
+            finished(job.name, job.make(run))
         for name in futures:
             if name not in done:
                 collect(name)
         for name, pending in started.items():
-            done[name] = pending.result()
+            finished(name, pending.result())
         if worker is not None:
             worker.close()
     finally:
@@ -161,8 +173,6 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             worker.kill()
         for pending in started.values():
             pending.cancel()
-    for job in todo:
-        store.keep(job.key, run.staging, done[job.name])
     return [r for job in jobs for r in done[job.name]], len(todo)
 
 

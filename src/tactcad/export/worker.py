@@ -440,4 +440,6 @@ def _run_job(name: str, handed: bytes, key: str | None = None
             setattr(exc, ISSUED_BEFORE, ([carried_warning(w.message, w.category)
                                           for w in caught], _LOGGED[:]))
             raise
+    # kept here as it finishes: a run stopped or killed before collecting it keeps it too
+    run.store.keep(job.key, run.staging, records)
     return records, [carried_warning(w.message, w.category) for w in caught], _LOGGED[:]
