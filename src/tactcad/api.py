@@ -746,7 +746,7 @@ class Project:
         Args:
             force_N, angle_deg: the grasp force (N, 1e-6 <= F <= 1000: ``MIN_GRASP_FORCE_N`` of
                 :mod:`tactcad.studies.grasp_report` and up) or the closing angle
-                (degrees, 0 ... 90); at most one.
+                (degrees, 0 ... the jaw's opening); at most one.
             kobj: the tissue's true stiffness under one tip (N/mm).
             coupling: ``layer``, ``halfspace`` or ``none``. profile: ``wedge`` or ``slab``.
             pivot_mm: the pin (X, Y) from the first tip (mm). pin_to_tip_mm, opening_deg,
@@ -1046,10 +1046,22 @@ def _grasp_numbers(given: Mapping[str, Any]) -> dict[str, Any]:
     """
     from tactcad.studies.grasp_report import GRASP_NUMBERS
 
-    return {k: None if v is None else
-            _checked_number(option_name(k), v, *GRASP_NUMBERS[k],
-                            count=2 if k == "pivot_mm" else None)
-            for k, v in given.items()}
+    import math
+    import numbers
+
+    from tactcad.errors import DesignError
+
+    def checked(k: str, v: Any) -> Any:
+        if k != "angle_deg":
+            return _checked_number(option_name(k), v, *GRASP_NUMBERS[k],
+                                   count=2 if k == "pivot_mm" else None)
+        # the closing angle's range is the jaw's own (0 ... its opening), checked against
+        # the jaw as the command's --angle-deg is: here only that it is a finite number
+        if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v):
+            raise DesignError(option_name(k), v, "a number 0 ... the jaw's opening (degrees)")
+        return float(v)
+
+    return {k: None if v is None else checked(k, v) for k, v in given.items()}
 
 
 def _checked_integer(option: str, value: Any, lo: int, hi: int, what: str) -> int:
