@@ -206,6 +206,78 @@ def refuse_system_folder(option: str, given: object, folder: str | Path,
         raise DesignError(option, str(given), f"{what} {SYSTEM_RULE}")
 
 
+def _not_writable_words(folder: Path) -> str:
+    """Why this user cannot write in ``folder``, in words."""
+    try:
+        read_only = bool(os.statvfs(folder).f_flag & os.ST_RDONLY)
+    except (OSError, AttributeError):
+        read_only = False
+    return "a read-only file system" if read_only else "permission denied"
+
+
+def refuse_output_path(option: str, given: object, what: str = "a file") -> Path:
+    """Refuse, before any work, an output a command could not write or must not: the one
+    rule of every option naming a file or folder a command writes (``--out``, ``--vtk``,
+    ``--junit``, ``--plot`` ...). A name too long for the file system, a system folder
+    (:func:`refuse_system_folder`), a folder that exists but is not writable, a file on the
+    way, and a missing folder that would be made in a system folder or in a folder this user
+    cannot write are refused; missing folders below a writable folder outside the system
+    folders are the command's to make (as ``export --out`` makes them).
+
+    Args:
+        option: the option named in the refusal, e.g. ``--out``.
+        given: the value as the user gave it.
+        what: ``a file`` (written into its folder) or ``a folder`` (written, or written into).
+
+    Returns:
+        The path, absolute (``~`` expanded).
+
+    Raises:
+        DesignError: naming ``option``, the value and what is allowed.
+    """
+    from tactcad.errors import DesignError
+
+    try:
+        return _output_path_kept(option, given, what)
+    except (OSError, RuntimeError) as exc:  # a path too long in all, a loop of links
+        raise DesignError(option, str(given), f"{what} the system can name",
+                          reason_in_words(exc) if isinstance(exc, OSError)
+                          else "a loop of symbolic links") from None
+
+
+def _output_path_kept(option: str, given: object, what: str) -> Path:
+    """:func:`refuse_output_path`'s checks, the system's own errors let through."""
+    from tactcad.errors import DesignError
+
+    path = Path(os.path.abspath(os.path.expanduser(str(given))))
+    folder = path if what == "a folder" else path.parent
+    refuse_system_folder(option, given, folder, what)
+    writable = "a writable folder (new or existing)" if what == "a folder" \
+        else "a file in a writable folder"
+    if what == "a folder" and path.exists() and not path.is_dir():
+        raise DesignError(option, str(given), writable, f"{path} is a file, not a folder")
+    if what != "a folder" and path.is_dir():
+        raise DesignError(option, str(given), "a file name, not a folder", f"{path} is a folder")
+    nearest = next(p for p in (folder, *folder.parents) if p.exists() or p == p.parent)
+    if not nearest.is_dir():
+        raise DesignError(option, str(given), writable, f"{nearest} is a file, not a folder")
+    if nearest != folder and in_system_folder(nearest):
+        missing = next(p for p in (folder, *folder.parents) if p.parent == nearest)
+        raise DesignError(option, str(given), f"{what} whose missing folders are made in an "
+                          "existing folder that is not a system folder",
+                          f"{missing} does not exist and would be made in {nearest}, a system "
+                          "folder")
+    if not os.access(nearest, os.W_OK | os.X_OK):
+        words = _not_writable_words(nearest)
+        if nearest == folder:  # it is there: it takes no file
+            raise DesignError(option, str(given), writable,
+                              f"{folder} exists and is not writable: {words}")
+        raise DesignError(option, str(given), "a folder that can be made" if folder == path
+                          else f"{what} in a folder that can be made",
+                          f"no folder can be made in {nearest}: it is not writable ({words})")
+    return path
+
+
 def write_failed(path: str | Path, what: str) -> OSError:
     """The error for a writer that reported failure at ``path``: a full disk
     when it is one (:func:`disk_full_error`), else an I/O error naming ``what``."""

@@ -498,7 +498,8 @@ CACHE_ALLOWED = ("a folder tactcad can write: an existing writable folder, or a 
 def usable_cache_folder(text: str, option: str = "--cache") -> Path:
     """The ``--cache`` folder as given, refused before any work when the store could not be
     kept there: an existing file, a folder without write access, or a new folder under a
-    file or under a folder without write access (nothing is created here).
+    file or under a folder without write access (nothing is created here); a system folder,
+    or a new one in a system folder (:func:`tactcad.atomic.refuse_output_path`).
 
     Args:
         text: ``--cache`` as typed.
@@ -512,6 +513,7 @@ def usable_cache_folder(text: str, option: str = "--cache") -> Path:
     """
     import os
 
+    from tactcad.atomic import refuse_output_path
     from tactcad.errors import DesignError
 
     folder = Path(text)
@@ -523,4 +525,5 @@ def usable_cache_folder(text: str, option: str = "--cache") -> Path:
         raise DesignError(option, text, CACHE_ALLOWED, why)
     if not os.access(nearest, os.W_OK | os.X_OK):
         raise DesignError(option, text, CACHE_ALLOWED, f"{nearest} is not writable")
+    refuse_output_path(option, text, "a folder")  # the rule of every folder a command writes
     return folder

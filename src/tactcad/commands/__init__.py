@@ -19,6 +19,7 @@ import tomllib
 from pathlib import Path
 from typing import Any, Callable
 
+from tactcad.commands.options import output_folder
 from tactcad.commands.notices import print_heads
 # one rule for where the store may be kept: the commands' --cache and the API's cache
 from tactcad.store import CACHE_ALLOWED, usable_cache_folder  # noqa: F401 (re-exported)
@@ -269,7 +270,7 @@ def add_cache_args(p: argparse.ArgumentParser,
     of the estimators' heavy results (FEM solves, :func:`tactcad.store.kept_result`),
     for a command that exports or runs the estimators (not ``bench``, which
     measures what each solve costs)."""
-    p.add_argument("--cache", metavar="DIR", default=None,
+    p.add_argument("--cache", metavar="DIR", type=output_folder, default=None,
                    help="store of finished export jobs and FEM results, reused when nothing "
                         f"that shapes them changed (default: {default_words})")
     p.add_argument("--no-cache", action="store_true",

@@ -13,7 +13,7 @@ from typing import Any, Mapping
 
 from tactcad.commands import add_cache_args, add_output_args, progress_from_args, store_from_args
 from tactcad.commands.design import jaw_classes, jaw_of
-from tactcad.commands.options import count, material_grade_name, number
+from tactcad.commands.options import count, material_grade_name, number, output_folder
 from tactcad.commands.tolerance import add_cluster_args
 from tactcad.errors import DesignError
 from tactcad.stopping import stop_signals_held
@@ -77,7 +77,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--batch", type=count(1, 10_000, "points per task"), default=None,
                    metavar="N", help="target points per Dask task (default: the points over "
                    f"{TASKS_PER_WORKER} tasks a worker thread, 1 to {MAX_AUTO_BATCH})")
-    p.add_argument("--out", metavar="DIR", default=None,
+    p.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help=f"folder for {TABLE_NAME}, {FIGURE_NAME} and {SUMMARY_NAME} "
                         f"(default: exports/atlas; with --project, the project's "
                         f"{PROJECT_ATLAS_FOLDER}/)")
@@ -445,12 +445,9 @@ def writable_folder(out: str) -> Path:
     """
     import os
 
-    from tactcad.atomic import refuse_system_folder, unmakeable_folder
+    from tactcad.atomic import refuse_output_path, unmakeable_folder
 
-    folder = Path(os.path.abspath(os.path.expanduser(out)))
-    refuse_system_folder("--out", out, folder)
-    if folder.exists() and not folder.is_dir():
-        raise DesignError("--out", out, "a folder (new or existing)", "it is a file")
+    folder = refuse_output_path("--out", out, "a folder")  # its default too (a file refused)
     reason = None if folder.is_dir() else unmakeable_folder(folder)
     if reason is not None:  # said in words, before anything is made
         raise DesignError("--out", out, "a folder that can be made", reason)

@@ -22,7 +22,7 @@ import os
 
 from tactcad.commands import (add_design_arg, add_output_args, plan_from_args, progress_from_args,
                                project_from_args)
-from tactcad.commands.options import count, material_grade_name, number
+from tactcad.commands.options import count, material_grade_name, number, output_file, output_folder
 from tactcad.commands.finite_json import dumps
 from tactcad.mechanics.ladder import models
 from tactcad.mechanics.modal_ladder import modal_models
@@ -55,7 +55,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     e.set_defaults(func=run_export)
     s = bsub.add_parser("stiffness", help="stiffness estimator benchmarks (tactcad.benchmarks.stiffness_bench)")
     add_design_arg(s)
-    s.add_argument("--out", metavar="DIR", default=None,
+    s.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="folder for the report files (default: the benchmark's own)")
     s.add_argument("--models", nargs="+", metavar="MODEL", default=None,
                    help="estimators to run (default: all)")
@@ -136,10 +136,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     r = bsub.add_parser("review", help="the review page: size and time to first frame in "
                                        "headless Chromium (goals <= 15 MB, <= 3 s)")
     add_design_arg(r)
-    r.add_argument("--out", metavar="DIR", default=None,
+    r.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="an export holding review/index.html (default: export to a temporary "
                         "folder first)")
-    r.add_argument("--screenshot", metavar="PNG", default=None,
+    r.add_argument("--screenshot", metavar="PNG", type=output_file(), default=None,
                    help="also save the page's first screen as this PNG")
     add_output_args(r, "print one JSON object: bytes, first_frame_s, wall_s, goals")
     r.set_defaults(func=run_review)
@@ -193,7 +193,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_design_arg(c)
     c.add_argument("--runs", type=count(1, 20, "whole-process runs"), default=3, metavar="N",
                    help="whole-process runs of tactcad check, 1 ... 20 (default: 3)")
-    c.add_argument("--out", metavar="DIR", default=None,
+    c.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="export folder to make current and check (default: a temporary one)")
     add_output_args(c, "print one JSON object: export_s, runs_s, median_s, groups, goal_s")
     c.set_defaults(func=run_check)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
+from tactcad.commands.options import output_file, output_folder
 from tactcad.checks.check_result import counts_text, status_counts, status_of
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
                               load_from_args)
@@ -32,7 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "the store of finished jobs. Each group's results are printed "
                                    "as it finishes. The groups, in order: " + groups_help() + ".")
     add_design_arg(p)
-    p.add_argument("--out", metavar="DIR", default=None,
+    p.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="the export to check (exported here first unless it holds an export "
                         "of the design; files edited by hand are never written over); default: "
                         "a temporary folder")
@@ -41,7 +42,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scene", metavar="NAME", action="append", default=None,
                    help="check only this scene (repeatable): interference, geometry sanity, STEP "
                         "and GLB read-back; without it the array and every scene are checked")
-    p.add_argument("--junit", metavar="FILE", default=None,
+    p.add_argument("--junit", metavar="FILE", type=output_file(), default=None,
                    help="also write the results as JUnit XML (one test case per check, one test "
                         "suite per part, sheet, the array and each scene) for CI")
     add_cache_args(p)

@@ -13,7 +13,7 @@ from typing import Any, Sequence
 
 from tactcad.mechanics.ladder import is_meshed, models
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, progress_from_args
-from tactcad.commands.options import count, material_grade_name, number
+from tactcad.commands.options import count, material_grade_name, number, output_file_or_folder
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N,
                                                  MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
@@ -200,7 +200,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="plan-view envelope (mm) the clamped array must fit: the design is "
                         "refused, naming the envelope it needs, when it does not; the file "
                         "states it as requirements.footprint_mm so verify and check keep it")
-    p.add_argument("--out", metavar="NEW.toml|DIR", required=True,
+    p.add_argument("--out", metavar="NEW.toml|DIR", type=output_file_or_folder(".toml"),
+                   required=True,
                    help="design file to write (.toml), or a sensor project folder DIR to make "
                         "as `tactcad new` does (the design DIR/<name>.toml, <name> DIR's own "
                         "with '-' made '_', with its rigs, scenes, README, .gitignore and CI "

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any, Callable
 
 from tactcad.commands import add_design_arg, add_output_args, progress_from_args
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import count, number
+from tactcad.commands.options import count, number, output_folder
 from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
                                                           DEFAULT_PITCH_UM, LEAST_PITCH_UM)
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM,
@@ -89,7 +89,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "(scikit-fem, silicon's anisotropic stiffness, triquadratic hexahedra, "
                         "two meshes extrapolated; about a minute and a half) and state the "
                         "closed form's K and f1 error against it")
-    p.add_argument("--out", default="die", metavar="DIR",
+    p.add_argument("--out", default="die", metavar="DIR", type=output_folder,
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
     p.set_defaults(func=run)
@@ -855,12 +855,12 @@ def refuse_a_foreign_folder(out: Path, name: str) -> None:
             folder, a mount point, another user's export: the array's rule,
             :func:`tactcad.export.run.check_out_dir`).
     """
-    from tactcad.atomic import refuse_system_folder, unmakeable_folder
+    from tactcad.atomic import refuse_output_path, unmakeable_folder
     from tactcad.export.export_owner import refuse_another_designs_export
     from tactcad.export.run import check_out_dir
     from tactcad.products.silicon_die.export.die_review import PRODUCT_NAME
 
-    refuse_system_folder("--out", out, out)
+    refuse_output_path("--out", out, "a folder")  # its default too: the rule of every output
     refuse_another_designs_export(out, PRODUCT_NAME, name)
     reason = None if out.is_dir() else unmakeable_folder(out)
     if reason is not None:  # before the staging folder beside it is made

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from tactcad.commands.options import output_folder
 from tactcad.commands import add_cache_args, add_output_args, progress_from_args
 
 
@@ -20,7 +21,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "2: bad input.")
     p.add_argument("old", metavar="OLD", help="export folder (with manifest.json) or design file")
     p.add_argument("new", metavar="NEW", help="export folder (with manifest.json) or design file")
-    p.add_argument("--out", metavar="DIR", default=None,
+    p.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="write the changed sheets' overlay and side-by-side PNG here")
     add_cache_args(p)
     add_output_args(p, "print one JSON object: parts, elements, derived, sheets, files")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from tactcad.commands.options import output_folder
 from tactcad.atomic import SYSTEM_RULE
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, project_from_args,
                               progress_from_args, store_from_args)
@@ -18,7 +19,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    + " and manifest.json (`tactcad scenes` lists the scenes). "
                                    "Progress (one line per job run) goes to stderr.")
     add_design_arg(p)
-    p.add_argument("--out", metavar="DIR", default="exports",
+    p.add_argument("--out", metavar="DIR", type=output_folder, default="exports",
                    help="output folder (default: exports), " + SYSTEM_RULE + "; not the home, "
                         "working or /tmp folder itself either (an export replaces its folder "
                         "as a whole)")

@@ -9,7 +9,7 @@ from tactcad.mechanics.ladder import is_meshed, levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               progress_from_args, load_from_args, product_view)
 from tactcad.commands.options import (check_element_option, element_number, keep_option_defaults,
-                                      number)
+                                      number, output_folder)
 from tactcad.errors import DesignError, TactcadError
 
 
@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_design_arg(p)
     add_cache_args(p)
     add_output_args(p, "print JSON")
-    p.add_argument("--vtk", metavar="DIR", default=None,
+    p.add_argument("--vtk", metavar="DIR", type=output_folder, default=None,
                    help="fem2d/fem3d: also write the finest mesh's displacement and von Mises "
                         "stress under 1 N as DIR/<part>_<model>.vtu (ParaView)")
     keep_option_defaults(p)  # a die's design: its view refuses an array's options

@@ -9,7 +9,7 @@ from pathlib import Path
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
 from tactcad.commands.options import (check_element_option, count, element_number,
-                                      keep_option_defaults, number)
+                                      keep_option_defaults, number, output_folder)
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
 from tactcad.studies.project_reports import MAX_TIP_MASS_MG
@@ -36,7 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    metavar="MG",
                    help="a further mass at the contact centre (mg; a tip cover, a pad), "
                         "0 ... 10000 (default 0)")
-    p.add_argument("--vtu", metavar="DIR", default=None,
+    p.add_argument("--vtu", metavar="DIR", type=output_folder, default=None,
                    help="fem2d/fem3d: also write each element's mode shapes as "
                         "DIR/<part>_modes_<model>.vtu (ParaView)")
     add_design_arg(p)

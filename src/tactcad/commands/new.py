@@ -7,6 +7,7 @@ import argparse
 import json
 import shlex
 
+from tactcad.commands.options import output_folder
 from tactcad.commands import add_output_args
 from tactcad.project_folder import DEFAULT_EXAMPLE, die_examples, examples
 
@@ -22,7 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "README, a .gitignore (exports, cache) and .github/workflows/hardware.yml "
                     "(export, check --junit, diff). DIR may exist if it holds none of these "
                     "files (a new git repository, say). Builds no geometry.")
-    p.add_argument("dir", metavar="DIR", help="the project folder to make")
+    p.add_argument("dir", metavar="DIR", type=output_folder, help="the project folder to make")
     start = p.add_mutually_exclusive_group()
     start.add_argument("--example", metavar="NAME", default=None,
                        help="start from this shipped example, its own rigs and scenes "

@@ -11,7 +11,10 @@ Two layers:
   command line by introspecting the parser, so an option added later is
   covered without being listed anywhere): numbers finite, ``-0`` read as 0,
   text values (paths, names) not empty, without NUL or other control
-  characters.
+  characters or bytes that are not UTF-8; an option whose type names a file
+  or folder the command writes (:func:`output_file`, :func:`output_folder`,
+  :func:`output_file_or_folder`) kept to the output rule
+  (:func:`tactcad.atomic.refuse_output_path`).
 """
 
 from __future__ import annotations
@@ -115,18 +118,42 @@ element_number.__name__ = "element number"
 
 def output_file(*suffixes: str) -> Callable[[str], str]:
     """An argparse type: a file to write, its name ending in one of ``suffixes``
-    (any case), not an existing folder."""
-    allowed = "a file name ending in " + " or ".join(suffixes)
+    (any case; any name without them), not an existing folder; the output rule
+    (:func:`validate_options`) applies to it."""
+    allowed = "a file name" + (" ending in " + " or ".join(suffixes) if suffixes else "")
 
     def parse(text: str) -> str:
         import os
 
-        if not text.strip() or not text.lower().endswith(tuple(s.lower() for s in suffixes)) \
-                or os.path.isdir(text):
+        if not text.strip() or os.path.isdir(text) or (
+                suffixes and not text.lower().endswith(tuple(s.lower() for s in suffixes))):
             raise argparse.ArgumentTypeError(f"{text[:80]!r}: allowed {allowed}")
         return text
 
     parse.__name__ = "file name"
+    parse.writes = lambda text: "a file"  # the output rule (validate_options) applies
+    return parse
+
+
+def output_folder(text: str) -> str:
+    """An argparse type: a folder a command writes, or writes into (``--out DIR``, ``--vtk
+    DIR``); the output rule (:func:`validate_options`) applies to it."""
+    return text
+
+
+output_folder.__name__ = "folder"
+output_folder.writes = lambda text: "a folder"
+
+
+def output_file_or_folder(*suffixes: str) -> Callable[[str], str]:
+    """An argparse type: a file to write where its name ends in one of ``suffixes`` (as
+    typed), else a folder to write into (``design --out NEW.toml|DIR``); the output rule
+    (:func:`validate_options`) applies to it."""
+    def parse(text: str) -> str:
+        return text
+
+    parse.__name__ = "file or folder"
+    parse.writes = lambda text: "a file" if text.endswith(suffixes) else "a folder"
     return parse
 
 
@@ -183,10 +210,24 @@ def _checked_value(name: str, value):
             raise DesignError(name, value, "a non-empty value")
         bad = next((c for c in value if unicodedata.category(c) in ("Cc", "Cs")
                     and c not in "\t"), None)
+        if bad is not None and 0xDC80 <= ord(bad) <= 0xDCFF:  # os.fsdecode's surrogateescape
+            raise DesignError(name, value, "text in UTF-8 (found a byte that is not UTF-8 "
+                                           f"(0x{ord(bad) - 0xDC00:02X}))")
         if bad is not None:
             raise DesignError(name, value, f"text without control characters (found "
                                            f"U+{ord(bad):04X})")
     return value
+
+
+def _output_rule(action: argparse.Action, name: str, value) -> None:
+    """The output rule (:func:`tactcad.atomic.refuse_output_path`) for an option whose type
+    names a file or folder the command writes (its ``writes``), before any work."""
+    writes = getattr(action.type, "writes", None)
+    if writes is None or not isinstance(value, str):
+        return
+    from tactcad.atomic import refuse_output_path
+
+    refuse_output_path(name, value, writes(value))
 
 
 def validate_options(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
@@ -211,6 +252,7 @@ def validate_options(parser: argparse.ArgumentParser, args: argparse.Namespace) 
                 setattr(args, action.dest, tuple(_checked_value(name, v) for v in value))
             else:
                 setattr(args, action.dest, _checked_value(name, value))
+                _output_rule(action, name, value)
 
 
 def warn_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,

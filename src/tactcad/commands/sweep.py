@@ -8,7 +8,7 @@ from pathlib import Path
 
 from tactcad.mechanics.ladder import models
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, plan_from_args
-from tactcad.commands.options import count, number
+from tactcad.commands.options import count, number, output_file, output_folder
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.tolerance import add_cluster_args
 
@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                       "to 1.5 times it)")
     g.add_argument("--radii", type=number(0, 100, "mm", lo_open=True), nargs="+", default=None, metavar="MM",
                    help="notch radii (default: the design's, raised to the web where thinner)")
-    g.add_argument("--out", metavar="DIR", default="exports/sweeps",
+    g.add_argument("--out", metavar="DIR", type=output_folder, default="exports/sweeps",
                    help="folder for design_grid.csv and design_chart.png (default %(default)s)")
     add_output_args(g, "print the rows as JSON")
     add_cluster_args(g, local_default=True)
@@ -47,7 +47,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     r.add_argument("--holdout", type=count(0, 100_000, "designs"), default=16, help="Sobol designs held out (default %(default)s)")
     r.add_argument("--points", metavar="FILE", default=None,
                    help="JSON lines of the fem3d points (resumable; default: the sweep's own)")
-    r.add_argument("--out", metavar="FILE", default="exports/sweeps/stiffness_correction.json",
+    r.add_argument("--out", metavar="FILE", type=output_file(),
+                   default="exports/sweeps/stiffness_correction.json",
                    help="fitted correction (the stored one is not touched; default %(default)s)")
     add_output_args(r, "print one JSON object: new points, seconds, residuals, the file written")
     add_cluster_args(r, local_default=True)
@@ -60,7 +61,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="Monte Carlo samples (default %(default)s)")
     m.add_argument("--seed", type=count(0, 2**32 - 1, "a seed"), default=0,
                    help="random seed of the draws (default %(default)s)")
-    m.add_argument("--out", metavar="DIR", default="exports/sweeps",
+    m.add_argument("--out", metavar="DIR", type=output_folder, default="exports/sweeps",
                    help="folder for tolerance_elements.csv and tolerance_units.csv (default %(default)s)")
     add_output_args(m, "print one JSON object: samples, seconds, the files written")
     add_cluster_args(m, local_default=True)
@@ -88,13 +89,13 @@ def check_out_folder(out: str | Path) -> None:
 
     Raises:
         DesignError: naming ``--out``, the path and the system folder rule
-            (:func:`tactcad.atomic.refuse_system_folder`) or why it cannot be made
+            (:func:`tactcad.atomic.refuse_output_path`) or why it cannot be made
             (:func:`tactcad.atomic.unmakeable_folder`).
     """
-    from tactcad.atomic import refuse_system_folder, unmakeable_folder
+    from tactcad.atomic import refuse_output_path, unmakeable_folder
     from tactcad.errors import DesignError
 
-    refuse_system_folder("--out", out, out)
+    refuse_output_path("--out", out, "a folder")  # its default too: the rule of every output
     reason = None if Path(out).is_dir() else unmakeable_folder(out)
     if reason is not None:
         raise DesignError("--out", str(out), "a folder that can be made", reason)

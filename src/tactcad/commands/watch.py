@@ -10,6 +10,7 @@ import threading
 from pathlib import Path
 from typing import Callable
 
+from tactcad.commands.options import output_folder
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, store_from_args
 
 DEFAULT_PORT = 8321
@@ -26,7 +27,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "edit is shown in the page and here; the last good export "
                                    "stays. Ctrl-C, SIGTERM or SIGHUP stops it (exit 0).")
     add_design_arg(p)
-    p.add_argument("--out", metavar="DIR", default="exports",
+    p.add_argument("--out", metavar="DIR", type=output_folder, default="exports",
                    help="the export folder kept current (default: exports)")
     p.add_argument("--port", metavar="N", type=int, default=DEFAULT_PORT,
                    help=f"port of the review page on 127.0.0.1 and [::1], 1024 ... 65535 or 0 "

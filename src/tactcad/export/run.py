@@ -28,7 +28,8 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
-                            leftover_staging, publish_dir, refuse_system_folder,
+                            leftover_staging, publish_dir, refuse_output_path,
+                            refuse_system_folder,
                             remove_partial_files, remove_tree, staging_dir, unmakeable_folder,
                             unremovable_tree, warn_left_behind, write_bytes_atomic,
                             writing_lock)
@@ -199,7 +200,9 @@ def check_out_dir(out_dir: str | Path) -> Path:
     """The export folder, resolved, once it is shown safe to replace.
 
     Raises:
-        DesignError: in a system folder (:func:`tactcad.atomic.refuse_system_folder`).
+        DesignError: the output rule (:func:`tactcad.atomic.refuse_output_path`): a system
+            folder, a missing one that would be made in one, or an existing folder that is
+            not writable.
         ExportPathError: a system folder, the home folder or the working folder
             (or one above it), a file, a mount point, a non-empty folder that is not a
             tactcad export (no ``manifest.json``): an export replaces its
@@ -230,8 +233,14 @@ def check_out_dir(out_dir: str | Path) -> Path:
     # the export is staged beside the folder and renamed into place: checked before any work,
     # so a folder that cannot be made is said in words and nothing is half written
     reason = unmakeable_folder(real)
+    if reason is not None and real.is_dir():  # it is there: the folder beside it is not
+        raise ExportPathError(f"--out {out_dir}: {real} exists, but the new export is built "
+                              f"beside it and swapped in, and {reason}")
     if reason is not None:
         raise ExportPathError(f"--out {out_dir}: the folder cannot be made ({reason})")
+    # the rule of every output (its default too): no folder made in a system folder, an
+    # existing folder that is not writable said so
+    refuse_output_path("--out", out_dir, "a folder")
     # the old export is removed once the new one takes its place: one that cannot be
     # removed would stay hidden beside it, so it is refused before any work
     stuck = unremovable_tree(real) if real.is_dir() else None
