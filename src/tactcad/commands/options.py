@@ -149,7 +149,14 @@ def output_file_or_folder(*suffixes: str) -> Callable[[str], str]:
     """An argparse type: a file to write where its name ends in one of ``suffixes`` (as
     typed), else a folder to write into (``design --out NEW.toml|DIR``); the output rule
     (:func:`validate_options`) applies to it."""
+    allowed = "a file name ending in " + " or ".join(suffixes) + ", or a project folder"
+
     def parse(text: str) -> str:
+        import os
+
+        # an existing file of another kind is neither: said as the option's own choice
+        if os.path.isfile(text) and not text.endswith(suffixes):
+            raise argparse.ArgumentTypeError(f"{text[:80]!r}: allowed {allowed}")
         return text
 
     parse.__name__ = "file or folder"
