@@ -452,9 +452,11 @@ def remove_partial_files(folder: Path) -> None:
         tmp.unlink(missing_ok=True)
 
 
-def write_atomic(target: str | Path, writer: Callable[[Path], object]) -> Path:
-    """Call ``writer(tmp_path)`` and move the result onto ``target`` atomically."""
-    with atomic_path(target) as tmp:
+def write_atomic(target: str | Path, writer: Callable[[Path], object],
+                 noted: bool = True) -> Path:
+    """Call ``writer(tmp_path)`` and move the result onto ``target`` atomically (``noted``:
+    see :func:`atomic_path`)."""
+    with atomic_path(target, noted) as tmp:
         writer(tmp)
     return Path(target)
 

@@ -616,6 +616,11 @@ def test_a_stopped_atlas_is_resumed_judging_only_the_points_it_had_not_finished(
     first = run_cli(*argv)
     assert first.returncode == 130 and asked == [[0, 1, 2, 3, 4, 5]]
     assert json.loads(first.stdout)["records"] == 2
+    from tactcad.atomic import changed_paths
+
+    part = list(cache.rglob("*.partial.parquet"))
+    assert part and str(part[0]) not in changed_paths()  # the store's, not the lab's file
+    assert str(out / "atlas.parquet") in changed_paths()
     stop_after[0] = 1  # a second stop, after fewer points than the first finished
     second = run_cli(*argv)
     assert second.returncode == 130 and asked[-1] == [2, 3, 4, 5]

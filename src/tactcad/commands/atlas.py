@@ -305,10 +305,10 @@ def judged_on_top(atlas, points: list[dict], args: argparse.Namespace, kept: Pat
         # the store's files a stop must not split: the whole table or the grown part
         with stop_signals_held(block_in_children=False):
             if complete:
-                write_table(kept, records, inputs)
+                write_table(kept, records, inputs, noted=False)
                 part.unlink(missing_ok=True)
             elif new:
-                write_table(part, records, inputs)
+                write_table(part, records, inputs, noted=False)
     return records, complete, len(finished)
 
 

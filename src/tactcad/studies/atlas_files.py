@@ -15,12 +15,14 @@ TABLE_NAME, FIGURE_NAME, SUMMARY_NAME = "atlas.parquet", "atlas_front.svg", "atl
 PROJECT_ATLAS_FOLDER = "atlas"
 
 
-def write_table(path: Path, records: list[dict], inputs: dict) -> None:
+def write_table(path: Path, records: list[dict], inputs: dict, noted: bool = True) -> None:
     """Records as a Parquet table (pyarrow), written atomically.
 
     Args:
         path: the file. records: flat records, one row each.
         inputs: the run's inputs, kept in the table's metadata (``tactcad.atlas``).
+        noted: False for the store's copy, which a stopped run's message does not name
+            among the files it wrote (:func:`tactcad.atomic.atomic_path`).
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
@@ -31,7 +33,7 @@ def write_table(path: Path, records: list[dict], inputs: dict) -> None:
         {"tactcad.atlas": json.dumps(inputs, sort_keys=True)})
     path.parent.mkdir(parents=True, exist_ok=True)
     # the house's atomic write: a whole file or none, with the mode its siblings get
-    write_atomic(path, lambda tmp: pq.write_table(table, str(tmp)))
+    write_atomic(path, lambda tmp: pq.write_table(table, str(tmp)), noted)
 
 
 def read_table(path: Path) -> list[dict] | None:
