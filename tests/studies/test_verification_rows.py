@@ -285,10 +285,29 @@ def test_worst_and_error_is_the_worst_resolution_and_its_error_kept_once(plan):
     assert other[0] != want[0] and len(kept) == 2
 
 
+def test_the_k_obj_resolutions_error_carries_the_grid_strains_error(plan):
+    # each force resolution is the noise over the grid strain: a strain read e low reads
+    # K_obj 1 / (1 - e) coarser, whatever the K (the K errors set to nothing here)
+    from dataclasses import replace
+
+    from tactcad.studies.verification import requirements_of, sensing_units, worst_and_error
+
+    units, req = sensing_units(plan, element_figures(plan)), requirements_of(plan)
+    e = units.strain_error_rel
+    assert 0 < e < 0.5
+    exact_k = replace(units, errors=tuple((0.0, 0.0) for _ in units.errors))
+    _, error = worst_and_error(exact_k, req.kobj_range_N_per_mm, req.full_scale_force_N)
+    assert error == pytest.approx(1 / (1 - e) - 1, rel=1e-12)
+    _, none = worst_and_error(replace(exact_k, strain_error_rel=0.0), req.kobj_range_N_per_mm,
+                              req.full_scale_force_N)
+    assert none == 0.0
+
+
 @pytest.mark.parametrize("design", [EXAMPLE, EXAMPLE.parents[1] / "macro_array" / "macro_array.toml"],
                          ids=["ti_array_2x3", "macro_array"])
 @pytest.mark.parametrize("widen", [1.0, 1.12])
-def test_the_k_obj_ranges_verdict_holds_exactly_where_every_k_error_keeps_its_sign(design, widen):
+def test_the_k_obj_ranges_verdict_holds_exactly_where_every_k_and_strain_error_keeps_its_sign(
+        design, widen):
     # the range's error was the resolution's (which reads K ratios): at fem2d a range whose
     # margin a K error of 8 % could turn was failed on a -7.7 % margin
     from dataclasses import replace
@@ -306,19 +325,31 @@ def test_the_k_obj_ranges_verdict_holds_exactly_where_every_k_error_keeps_its_si
     units = sensing_units(plan, element_figures(plan, "closed-form"))
     rng, force = req.kobj_range_N_per_mm, req.full_scale_force_N
 
-    def margin(u) -> float:
-        a, b = readable_range(u, rng, force, req.kobj_resolution_rel)
+    def margin(u, noise: float = 1.0) -> float:
+        # every force resolution scaled by ``noise`` scales every K_obj resolution by it
+        scaled = [x._replace(force_resolution_reference_N=x.force_resolution_reference_N * noise,
+                             force_resolution_measuring_N=x.force_resolution_measuring_N * noise)
+                  for x in u.read]
+        a, b = readable_range(replace(u, read=tuple(scaled)), rng, force,
+                              req.kobj_resolution_rel)
         return min(rng[0] / a, b / rng[1]) - 1.0
 
-    shifted = [margin(replace(units, read=tuple(units.shifted_by_error(sr, sm))))
-               for sr in (-1, 1) for sm in (-1, 1)]
     record = next(r for r in verification_matrix(plan, "closed-form")
                   if r["requirement"] == "kobj_range_N_per_mm")
     m = record["margin_rel"]
     assert m == pytest.approx(margin(units), rel=1e-12)
+    # the grid strains' error moves every force resolution the way that narrows a met
+    # range and widens an unmet one
+    e = units.strain_error_rel
+    assert 0 < e < 0.5
+    noise = 1 / (1 - e) if m >= 0 else 1 / (1 + e)
+    shifted = [margin(units, noise)] + [
+        margin(replace(units, read=tuple(units.shifted_by_error(sr, sm))), noise)
+        for sr in (-1, 1) for sm in (-1, 1)]
     towards_edge = [m - x if m >= 0 else x - m for x in shifted]
-    assert record["error_estimate_rel"] == pytest.approx(max(0.0, *towards_edge), abs=1e-15)
-    # decided exactly where every move of the K keeps the margin's sign
+    assert record["error_estimate_rel"] == pytest.approx(max(0.0, *towards_edge), rel=1e-9,
+                                                         abs=1e-12)
+    # decided exactly where every such move keeps the margin's sign
     same_sign = all((x >= 0) == (m >= 0) for x in shifted)
     assert (record["verdict"] != "undecided") == same_sign or \
         abs(abs(m) - record["error_estimate_rel"]) < 1e-12, record

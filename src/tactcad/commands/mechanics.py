@@ -93,10 +93,11 @@ def run_stiffness(args: argparse.Namespace) -> int:
     with_gauge = slot.geometry.gauge is not None
     grid, grid_error = r.grid_strain_per_N, None  # what the grid reads, as `readout` gives it
     if with_gauge:  # its error at this level
-        from tactcad.mechanics.readout_chain import grid_strain_per_N, readout_chain
+        from tactcad.mechanics.readout_chain import (grid_strain_error_rel, grid_strain_per_N,
+                                                     readout_chain)
 
         read = grid_strain_per_N(slot.geometry, plan.material, readout_chain(plan), args.model)
-        grid_error = float(read.get("grid_error_rel", read["error_rel"]))
+        grid_error = grid_strain_error_rel(read)
     if args.json:
         out = {**r.as_json(), "grid_strain_per_N": grid, "grid_strain_error_rel": grid_error,
                "with_gauge": with_gauge}

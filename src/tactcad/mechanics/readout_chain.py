@@ -66,7 +66,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
@@ -630,12 +630,30 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     return out
 
 
+def grid_strain_error_rel(read: Mapping[str, Any]) -> float:
+    """The estimated relative error of the grid strain a :func:`grid_strain_per_N` answer
+    gives: the meshed grid's own (``"grid_error_rel"``: Richardson over the meshes, plus the
+    fem2d width factor's) where the level meshes the layer, else the face figure's
+    (``"error_rel"``, the fitted width and profile factor's), which the layer's read factor
+    carries over. ``stiffness --json``'s ``grid_strain_error_rel``, ``thermal``'s and the
+    K_obj records' strain term are this one figure.
+
+    Args:
+        read: a :func:`grid_strain_per_N` answer.
+
+    Returns:
+        The relative error (dimensionless, >= 0).
+    """
+    return float(read.get("grid_error_rel", read["error_rel"]))
+
+
 @kept_per_process(maxsize=1024)
-def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
-                               model: str) -> float:
-    """The unsigned strain per newton (1/N) the gauge grid of ``chain`` reads on ``g`` at a
-    level that meshes nothing (closed form, beam): ``grid_strain_per_N``'s ``"grid"``, kept
-    per process on its (frozen) inputs, since a search reads the same element's grid strain
+def unmeshed_grid_read(g: ElementGeometry, material: Material, chain,
+                       model: str) -> tuple[float, float]:
+    """(unsigned strain per newton (1/N), its relative error) the gauge grid of ``chain``
+    reads on ``g`` at a level that meshes nothing (closed form, beam):
+    :func:`grid_strain_per_N`'s ``"grid"`` and :func:`grid_strain_error_rel`, kept per
+    process on their (frozen) inputs, since a search reads the same element's grid strain
     for its stops, its limits and its verification matrix.
 
     Args:
@@ -643,14 +661,25 @@ def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
             (:class:`tactcad.design.readout_section.ReadoutChain`). model: the level's name.
 
     Returns:
-        The strain per newton (1/N, unsigned).
+        (the strain per newton (1/N, unsigned), its relative error).
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
 
     Source: :func:`grid_strain_per_N`.
     """
-    return abs(float(grid_strain_per_N(g, material, chain, model)["grid"]))
+    read = grid_strain_per_N(g, material, chain, model)
+    return abs(float(read["grid"])), grid_strain_error_rel(read)
+
+
+def unmeshed_grid_strain_per_N(g: ElementGeometry, material: Material, chain,
+                               model: str) -> float:
+    """The unsigned strain per newton (1/N) of :func:`unmeshed_grid_read`.
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    return unmeshed_grid_read(g, material, chain, model)[0]
 
 
 def unmeshed_force_resolution_N(plan: Plan, model: str = "closed-form") -> dict[str, float]:
@@ -662,11 +691,39 @@ def unmeshed_force_resolution_N(plan: Plan, model: str = "closed-form") -> dict[
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
     """
+    return {name: d["dF"] for name, d in force_resolution_reads(plan, model).items()}
+
+
+def force_resolution_reads(plan: Plan, model: str = "closed-form",
+                           progress: Callable[[str], None] | None = None
+                           ) -> dict[str, dict[str, float]]:
+    """Per distinct part: its force resolution through the read-out chain at ``model``
+    (``"dF"``, N, 1 sigma) and the relative error of the grid strain it divides by
+    (``"strain_error_rel"``, :func:`grid_strain_error_rel`): the read-out's share of the
+    K_obj records' error. A level that meshes nothing reads each part's kept grid strain
+    (:func:`unmeshed_grid_read`); a finite-element level reads its solves
+    (:func:`element_force_resolution_N`).
+
+    Args:
+        plan: the design. model: the ladder level. progress: one line per part solved (the
+            finite-element levels).
+
+    Returns:
+        ``{part name: {"dF": N, "strain_error_rel": dimensionless}}``.
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    if is_meshed(model):
+        return {name: {"dF": d["dF"], "strain_error_rel": grid_strain_error_rel(d["eps"])}
+                for name, d in element_force_resolution_N(plan, model, progress).items()}
     chain = readout_chain(plan)
     noise = noise_budget_V(chain)["reading"]
-    return {name: force_resolution_N(chain, unmeshed_grid_strain_per_N(g, plan.material, chain,
-                                                                        model), noise)
-            for name, g in plan.distinct_elements.items()}
+    out = {}
+    for name, g in plan.distinct_elements.items():
+        eps, error = unmeshed_grid_read(g, plan.material, chain, model)
+        out[name] = {"dF": force_resolution_N(chain, eps, noise), "strain_error_rel": error}
+    return out
 
 
 def readout_report(plan: Plan, requirements, model: str = "closed-form",

@@ -87,8 +87,8 @@ import numpy as np
 from tactcad.design.array_plan import Plan
 from tactcad.design.readout_section import (TN502_POWER_DENSITY_W_PER_MM2, ReadoutChain)
 from tactcad.errors import DesignError
-from tactcad.mechanics.readout_chain import (force_resolution_N, grid_strain_per_N,
-                                             noise_budget_V, readout_chain)
+from tactcad.mechanics.readout_chain import (force_resolution_N, grid_strain_error_rel,
+                                             grid_strain_per_N, noise_budget_V, readout_chain)
 from tactcad.mechanics.verdicts import deciding_item, judged
 
 #: Poisson ratio of the calibration beam of the maker's thermal-output data (TN-504).
@@ -329,7 +329,7 @@ def _part_figures(plan: Plan, chain: ReadoutChain, model: str,
             k, err = stiffness[name], None
         read = grid_strain_per_N(g, plan.material, chain, model)
         out[name] = {"K": k, "err": err, "eps": read["grid"],
-                     "eps_err": float(read.get("grid_error_rel", read["error_rel"]))}
+                     "eps_err": grid_strain_error_rel(read)}
     return out
 
 

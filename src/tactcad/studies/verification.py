@@ -234,11 +234,28 @@ class SensingUnits:
             resolution of reference and measuring element; N/mm, N).
         errors: per unit, the level's K error estimate of (reference, measuring element).
         force_resolution_N: per element number, its force resolution (N, 1 sigma).
+        strain_error_rel: the largest relative error of the grid strain any unit's element
+            reads at the level (:func:`tactcad.mechanics.readout_chain.grid_strain_error_rel`):
+            each force resolution is the reading's noise over that strain, so a strain
+            read e low leaves it up to 1 / (1 - e) coarser.
     """
 
     read: tuple
     errors: tuple
     force_resolution_N: dict
+    strain_error_rel: float = 0.0
+
+    def noise_factors(self) -> tuple[float, ...]:
+        """The factors the grid strains' error can scale every K_obj resolution of the units
+        by, (1 / (1 + e), 1 / (1 - e)) for e = :attr:`strain_error_rel`: a unit's resolution
+        is proportional to its two elements' force resolutions together (the hypot of their
+        deflection resolutions, :func:`tactcad.mechanics.resolution.ratio_noise`) and rises
+        with each, so each element's strain moved by at most e keeps it within these factors
+        of the stated one. (inf,) when e >= 1 (a strain that may be nil bounds nothing)."""
+        e = self.strain_error_rel
+        if not e < 1.0:
+            return (math.inf,)
+        return (1.0 / (1.0 + e), 1.0 / (1.0 - e))
 
     def shifted_by_error(self, sign_r: int, sign_m: int) -> list:
         """The units with every reference's K moved by ``sign_r`` x its error and every
@@ -248,27 +265,26 @@ class SensingUnits:
 
 
 def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
-    """The units of ``plan`` with the K of ``fig``'s level and each element's force
+    """The units of ``plan`` with the K of ``fig``'s level, each element's force
     resolution through the read-out chain at that level (a FEM level reads the gauge
-    strain off the fem2d field).
+    strain off its own solves) and the largest error of those grid strains.
 
     Raises:
         UnknownModelError: ``fig.model`` is not a ladder level.
     """
-    from tactcad.mechanics.ladder import is_meshed
-    from tactcad.mechanics.readout_chain import (element_force_resolution_N, row_units,
-                                                 unmeshed_force_resolution_N)
+    from tactcad.mechanics.readout_chain import force_resolution_reads, row_units
     from tactcad.mechanics.resolution import ReadUnit
 
-    df = unmeshed_force_resolution_N(plan, fig.model) if not is_meshed(fig.model) else \
-        {name: d["dF"] for name, d in element_force_resolution_N(plan, fig.model).items()}
-    read, errors = [], []
+    reads = force_resolution_reads(plan, fig.model)
+    read, errors, strain_errors = [], [], [0.0]
     for ref, meas in row_units(plan, fig.k):
         r, m = ref.geometry.part_name, meas.geometry.part_name
-        read.append(ReadUnit(fig.k[r], df[r], fig.k[m], df[m]))
+        read.append(ReadUnit(fig.k[r], reads[r]["dF"], fig.k[m], reads[m]["dF"]))
         errors.append((fig.k_error[r], fig.k_error[m]))
+        strain_errors += [reads[r]["strain_error_rel"], reads[m]["strain_error_rel"]]
     return SensingUnits(tuple(read), tuple(errors),
-                        {s.number: df[s.geometry.part_name] for s in plan.slots})
+                        {s.number: reads[s.geometry.part_name]["dF"] for s in plan.slots},
+                        max(strain_errors))
 
 
 def worst_resolution(units: SensingUnits, rng, force_N: float) -> float:
@@ -279,18 +295,9 @@ def worst_resolution(units: SensingUnits, rng, force_N: float) -> float:
 
 
 def resolution_error_rel(units: SensingUnits, rng, force_N: float) -> float:
-    """The worst K_obj resolution's relative error from the K errors of the references and
-    the measuring elements: its largest change with each K moved by its own error, every
-    sign combination; inf when a move leaves a unit unreadable (its measuring element as
-    stiff as its reference or stiffer: eq. 2 then has no answer, so the error is unbounded)."""
-    from tactcad.mechanics.resolution import worst_resolution_rel
-
-    worst = worst_resolution(units, rng, force_N)
-    moved = [worst_resolution_rel(units.shifted_by_error(sr, sm), rng, force_N)
-             for sr in (-1, 1) for sm in (-1, 1)]
-    if not all(math.isfinite(w) for w in moved):
-        return math.inf
-    return max(abs(w / worst - 1.0) for w in moved)
+    """The worst K_obj resolution's relative error (:func:`worst_and_error`'s second value).
+    """
+    return worst_and_error(units, rng, force_N)[1]
 
 
 def readable_range(units: SensingUnits, rng, force_N, target_rel) -> tuple[float, float] | None:
@@ -336,8 +343,11 @@ def worst_and_error(units: SensingUnits, rng, force_N: float,
         kept: a dict of answers for these same ``units``, filled here; None: none kept.
 
     Returns:
-        (the worst relative resolution, its relative error; inf where a move by the K
-        errors leaves a unit unreadable).
+        (the worst relative resolution, its relative error: its largest change with each
+        K moved by its own error, every sign combination, and every force resolution by
+        the grid strains' error (:meth:`SensingUnits.noise_factors`); inf where a move by
+        the K errors leaves a unit unreadable: its measuring element as stiff as its
+        reference or stiffer, where eq. 2 has no answer).
     """
     from tactcad.mechanics.resolution import worst_resolution_rel
 
@@ -345,10 +355,11 @@ def worst_and_error(units: SensingUnits, rng, force_N: float,
     if kept is not None and key in kept:
         return kept[key]
     worst = worst_resolution(units, rng, force_N)
-    moved = [worst_resolution_rel(units.shifted_by_error(sr, sm), rng, force_N)
-             for sr in (-1, 1) for sm in (-1, 1)]
-    error = math.inf if not all(math.isfinite(w) for w in moved) else \
-        max(abs(w / worst - 1.0) for w in moved)
+    moved = [worst] + [worst_resolution_rel(units.shifted_by_error(sr, sm), rng, force_N)
+                       for sr in (-1, 1) for sm in (-1, 1)]
+    factors = units.noise_factors()
+    error = math.inf if not all(math.isfinite(w) for w in [*moved, *factors]) else \
+        max(abs(w * f / worst - 1.0) for w in moved for f in (1.0, *factors))
     if kept is not None:
         kept[key] = (worst, error)
     return worst, error
@@ -550,11 +561,15 @@ def kobj_records(units: SensingUnits, req: Requirements, force_N: float, model: 
 
 def readable_range_error_rel(units: SensingUnits, rng, force_N: float, target_rel: float,
                              span: tuple[float, float] | None) -> float:
-    """How far the K errors of the references and the measuring elements can move the K_obj
-    range record's margin towards its verdict's edge: each K moved by its own error, every
-    sign combination (as :func:`resolution_error_rel` moves them), the largest fall of the
-    margin (``min(lo / a, b / hi) - 1`` of the readable range ``(a, b)``) where it is met,
-    the largest rise where it is not; inf when a move leaves the range's centre unread. The
+    """How far the K errors of the references and the measuring elements and the grid
+    strains' error can move the K_obj range record's margin towards its verdict's edge:
+    each K moved by its own error, every sign combination (as :func:`worst_and_error`
+    moves them), with every resolution scaled by the strains' factor that narrows the
+    readable range where it is met and widens it where it is not
+    (:meth:`SensingUnits.noise_factors`; a resolution scaled by f reads within the target
+    where the stated one reads within the target over f); the largest fall of the margin
+    (``min(lo / a, b / hi) - 1`` of the readable range ``(a, b)``) where it is met, the
+    largest rise where it is not; inf when a move leaves the range's centre unread. The
     range's margin is then decided exactly where every such move keeps its sign.
 
     Args:
@@ -570,15 +585,19 @@ def readable_range_error_rel(units: SensingUnits, rng, force_N: float, target_re
         return 0.0
     lo, hi = rng
     margin = min(lo / span[0], span[1] / hi) - 1.0
+    factors = units.noise_factors()
+    if not all(math.isfinite(f) for f in factors):
+        return math.inf
+    adverse = max(factors) if margin >= 0 else min(factors)  # towards the verdict's edge
+    moves = [units.read] + [tuple(units.shifted_by_error(sr, sm))
+                            for sr in (-1, 1) for sm in (-1, 1)]
     worst = 0.0
-    for sr in (-1, 1):
-        for sm in (-1, 1):
-            shifted = _replaced(units, read=tuple(units.shifted_by_error(sr, sm)))
-            moved = readable_range(shifted, rng, force_N, target_rel)
-            if moved is None:
-                return math.inf
-            change = min(lo / moved[0], moved[1] / hi) - 1.0 - margin
-            worst = max(worst, -change if margin >= 0 else change)
+    for read in moves:
+        moved = readable_range(_replaced(units, read=read), rng, force_N, target_rel / adverse)
+        if moved is None:
+            return math.inf
+        change = min(lo / moved[0], moved[1] / hi) - 1.0 - margin
+        worst = max(worst, -change if margin >= 0 else change)
     return worst
 
 
