@@ -10,7 +10,7 @@ ROOT = Path(__file__).resolve().parents[2]
 TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
 MACRO = str(ROOT / "hardware" / "macro_array" / "macro_array.toml")
 SOURCES = {"readout_noise", "thermal_zero", "thermal_span", "manufacturing_tolerance",
-           "stack_crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity",
+           "crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity",
            "gauge_creep", "gauge_hysteresis"}
 
 
@@ -21,7 +21,7 @@ def test_both_examples_have_every_source_at_every_kobj(design):
     d = json.loads(r.stdout)
     assert d["units"] and len(d["K_obj_N_per_mm"]) == 7
     for u in d["units"]:
-        assert set(u["sources"]) == SOURCES
+        assert set(u["sources"]) - set(d["deprecated_keys"]) == SOURCES
         assert all(len(v["after_rel"]) == 7 for v in u["sources"].values())
         # a unit alone resolving K_obj worse than required reads none there (as verify's
         # readable range judges): its sums are unreadable, None
@@ -210,3 +210,36 @@ def test_the_earlier_names_still_work_hidden_and_said_renamed_on_one_line(old, n
     bad = run_cli("budget", "--design", TI, old, "-1", "--json")
     assert bad.returncode == 2 and old in json.loads(bad.stdout)["error"]["message"]
 
+
+def test_a_combs_crosstalk_term_has_a_neutral_key_and_the_old_one_deprecated():
+    """A monolithic comb has no stack: its crosstalk term is keyed ``crosstalk`` (and its
+    notes ``crosstalk_N_per_N``, ``crosstalk_basis``). The old ``stack_crosstalk`` keys are
+    still written, the same values, listed in ``deprecated_keys`` (old -> new), and no sum
+    counts the term twice."""
+    import math
+
+    r = run_cli("budget", "--design", COMB, "--points", "3", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["deprecated_keys"] == {"stack_crosstalk": "crosstalk",
+                                    "stack_crosstalk_N_per_N": "crosstalk_N_per_N",
+                                    "stack_crosstalk_basis": "crosstalk_basis"}
+    keys = [s["key"] for s in d["sources"]]
+    assert "crosstalk" in keys and "stack_crosstalk" not in keys
+    assert "(comb-beam)" in d["notes"]["crosstalk_basis"] and d["notes"]["crosstalk_N_per_N"] > 0
+    for old, new in d["deprecated_keys"].items():
+        if old in d["notes"]:
+            assert d["notes"][old] == d["notes"][new]
+    for u in d["units"]:
+        term = u["sources"]["crosstalk"]
+        assert min(term["before_rel"]) > 0 and u["sources"]["stack_crosstalk"] == term
+        after = [u["sources"][k]["after_rel"] for k in keys]
+        for i, rss in enumerate(u["rss_rel"]):  # every source once: crosstalk not twice
+            if rss is not None:
+                assert rss == pytest.approx(math.sqrt(sum(a[i] ** 2 for a in after)), rel=1e-5)
+                assert u["worst_case_rel"][i] == pytest.approx(
+                    sum(abs(a[i]) for a in after), rel=1e-5)
+        assert "stack_crosstalk" not in u["dominant"]
+    text = run_cli("budget", "--design", COMB, "--points", "3").stdout
+    assert "| crosstalk |" in text and "stack crosstalk" not in text
+    assert "  crosstalk_basis: " in text and "stack_crosstalk" not in text

@@ -25,7 +25,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "K_obj of a log-spaced grid over the requirements' K_obj range: the "
                     "relative K_obj error (eq. 3 and its derivatives) from read-out noise and "
                     "quantisation, thermal zero and span over the temperature step, "
-                    "manufacturing tolerance, stack crosstalk, tissue coupling (a half-space "
+                    "manufacturing tolerance, crosstalk, tissue coupling (a half-space "
                     "sample under the design's tip faces), the gauge model and the "
                     "calibration, before and after the correction each gets (calibration, "
                     "decoupling matrix, coupled inversion); their RSS and worst-case sum, and "
