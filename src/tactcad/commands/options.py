@@ -382,21 +382,49 @@ def grasp_option_error(exc, args: Any):
         The error naming the option, or ``exc`` when no option sets its field.
     """
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import ACTIVE_SET_PASSES, UnsettledContact
+    from tactcad.in_use.grasp_experiment import UnsettledContact
 
-    slab = getattr(args, "slab_thickness_mm", None)
-    if isinstance(exc, UnsettledContact) and slab is not None:
-        return DesignError("--slab-thickness-mm", slab,
-                           f"a slab on which the contact settles (thicker than {slab:g} mm)",
-                           f"the posts' contact (their stops and lift-off) did not settle "
-                           f"within {ACTIVE_SET_PASSES} passes of its solve on a {slab:g} mm "
-                           "slab: give a thicker one")
+    if isinstance(exc, UnsettledContact):
+        return unsettled_slab_error(exc, getattr(args, "slab_thickness_mm", None))
     option = GRASP_OPTION_OF.get(exc.field)
     if option is None:
         return exc
     given = getattr(args, option.removeprefix("--").replace("-", "_"), None)
     value = list(given) if isinstance(given, (list, tuple)) else exc.value
     return DesignError(option, value, exc.allowed, exc.why, alternatives=exc.alternatives)
+
+
+def unsettled_slab_error(exc, given_mm: float | None):
+    """An unsettled contact (:class:`~tactcad.in_use.grasp_experiment.UnsettledContact`)
+    said as ``--slab-thickness-mm``: its value (as given, else the default thickness the
+    grasp was solved on) and the thicker range of the option to give, whether the option
+    was given or not.
+
+    Args:
+        exc: the refusal; its ``value`` is the thickness solved on (mm) where its field is
+            ``jaw.slab_thickness_mm``.
+        given_mm: ``--slab-thickness-mm`` as given (mm), None at its default.
+
+    Returns:
+        A :class:`~tactcad.errors.DesignError` of ``--slab-thickness-mm``.
+    """
+    from tactcad.errors import DesignError
+    from tactcad.in_use.grasp_experiment import ACTIVE_SET_PASSES
+    from tactcad.studies.grasp_report import GRASP_NUMBERS
+
+    solved = exc.value if exc.field == "jaw.slab_thickness_mm" else None
+    slab = given_mm if given_mm is not None else solved
+    hi = GRASP_NUMBERS["slab_thickness_mm"][1]
+    allowed = (f"> {slab:g} ... {hi:g} mm (a slab thicker than {slab:g} mm, on which the "
+               "contact settles)" if isinstance(slab, (int, float)) else
+               f"a thicker slab, at most {hi:g} mm, on which the contact settles")
+    on = f"a {slab:g} mm slab" if isinstance(slab, (int, float)) else "the slab"
+    why = (f"the tips' contact (their stops and lift-off) did not settle within "
+           f"{ACTIVE_SET_PASSES} passes of its solve on {on}")
+    why += (": give a thicker one" if given_mm is not None else
+            ", the default thickness (--slab-thickness-mm not given: the design's "
+            "[tissue_slab] or the assumed one): give a thicker one with --slab-thickness-mm")
+    return DesignError("--slab-thickness-mm", slab, allowed, why)
 
 
 COMMON_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",
