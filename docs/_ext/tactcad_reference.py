@@ -132,6 +132,9 @@ def option_rows(parser: argparse.ArgumentParser) -> list[list[str]]:
         if action.required or not action.option_strings:
             value = (value + " (required)").strip()
         help_text = formatter._expand_help(action) if action.help else ""
+        if getattr(action, "renamed_to", None):  # an earlier name, hidden from --help
+            help_text = (f"deprecated: the earlier name of {action.renamed_to}, still taken "
+                         f"(a line on stderr says so); not shown by --help")
         rows.append([names, value, text(help_text)])
     return rows
 

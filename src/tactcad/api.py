@@ -645,7 +645,7 @@ class Project:
         from tactcad.errors import DesignError
         from tactcad.studies.project_reports import budget_record
 
-        # the options' own ranges (``budget --force``, ``--delta-T``), named as keywords
+        # the options' own ranges (``budget --force-N``, ``--delta-T-K``), named as keywords
         for name, value, (lo, hi), lo_open in (("--force-N", force_N, (0.0, 1000.0), True),
                                                ("--delta-T-K", delta_T_K, (0.0, 100.0), False)):
             if value is None:

@@ -37,7 +37,9 @@ def without_seconds(record):
 @pytest.mark.parametrize("method, command, kwargs, argv", [
     ("readout", "readout", {}, ()),
     ("thermal", "thermal", {"element": 2}, ("--element", "2")),
-    ("budget", "budget", {"delta_T_K": 3.0}, ("--delta-T", "3")),
+    ("budget", "budget", {"delta_T_K": 3.0}, ("--delta-T-K", "3")),
+    ("budget", "budget", {"force_N": 0.05, "delta_T_K": 3.0},
+     ("--force-N", "0.05", "--delta-T-K", "3")),
     ("crosstalk", "crosstalk", {}, ()),
     ("grasp", "grasp", {}, ()),
     ("grasp", "grasp", {"force_N": 0.2, "slab_thickness_mm": 4.0, "profile": "slab"},

@@ -10,7 +10,7 @@ ROOT = Path(__file__).resolve().parents[2]
 TI = str(ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml")
 MACRO = str(ROOT / "hardware" / "macro_array" / "macro_array.toml")
 SOURCES = {"readout_noise", "thermal_zero", "thermal_span", "manufacturing_tolerance",
-           "stack_crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity",
+           "crosstalk", "tissue_coupling", "gauge_model", "calibration", "tip_coplanarity",
            "gauge_creep", "gauge_hysteresis"}
 
 
@@ -21,7 +21,7 @@ def test_both_examples_have_every_source_at_every_kobj(design):
     d = json.loads(r.stdout)
     assert d["units"] and len(d["K_obj_N_per_mm"]) == 7
     for u in d["units"]:
-        assert set(u["sources"]) == SOURCES
+        assert set(u["sources"]) - set(d["deprecated_keys"]) == SOURCES
         assert all(len(v["after_rel"]) == 7 for v in u["sources"].values())
         # a unit alone resolving K_obj worse than required reads none there (as verify's
         # readable range judges): its sums are unreadable, None
@@ -33,9 +33,9 @@ def test_both_examples_have_every_source_at_every_kobj(design):
 
 
 def test_force_and_temperature_step_reach_the_budget():
-    base = json.loads(run_cli("budget", "--design", TI, "--json", "--delta-T", "2").stdout)
-    more = json.loads(run_cli("budget", "--design", TI, "--json", "--delta-T", "4",
-                              "--force", "0.05").stdout)
+    base = json.loads(run_cli("budget", "--design", TI, "--json", "--delta-T-K", "2").stdout)
+    more = json.loads(run_cli("budget", "--design", TI, "--json", "--delta-T-K", "4",
+                              "--force-N", "0.05").stdout)
     assert base["force_N"] == 0.1 and more["force_N"] == 0.05 and more["delta_T_K"] == 4
     a, b = base["units"][0]["sources"], more["units"][0]["sources"]
     # the span scales with the step; the zero with the step over the force (to first order:
@@ -57,8 +57,8 @@ def test_a_non_paper_design_of_four_columns_and_the_text_output(tmp_path):
     assert r.stdout.count("\nunit ") == 6  # two rows, three measuring elements each
 
 
-@pytest.mark.parametrize("option, value, words", [("--delta-T", "150", "0 ... 100 (K)"),
-                                                   ("--force", "0", ">0 ... 1000 (N)"),
+@pytest.mark.parametrize("option, value, words", [("--delta-T-K", "150", "0 ... 100 (K)"),
+                                                   ("--force-N", "0", ">0 ... 1000 (N)"),
                                                    ("--points", "1", "2 ... 101"),
                                                    ("--out", "b.txt", ".json or .md")])
 def test_bad_options_name_the_option_the_value_and_the_range(option, value, words):
@@ -122,19 +122,19 @@ def test_a_force_past_the_rating_or_an_overload_limit_is_warned_in_the_text_and_
     rated = requirements_of(load_design(COMB)).full_scale_force_N
 
     def warned(force):
-        r = run_cli("budget", "--design", COMB, "--force", force, "--json")
+        r = run_cli("budget", "--design", COMB, "--force-N", force, "--json")
         assert r.returncode == 0, r.stderr
         return json.loads(r.stdout)["warnings"]
 
     assert warned(f"{rated:g}") == []
     past = warned(f"{1.2 * rated:g}")
-    assert len(past) == 1 and past[0].startswith(f"--force = {1.2 * rated:g} N")
+    assert len(past) == 1 and past[0].startswith(f"--force-N = {1.2 * rated:g} N")
     assert f"rated full-scale force {rated:g} N" in past[0] and "overload" not in past[0]
     broken = warned("1000")
-    assert len(broken) == 1 and "--force = 1000 N" in broken[0]
+    assert len(broken) == 1 and "--force-N = 1000 N" in broken[0]
     assert "overload limit" in broken[0] and "damaged" in broken[0]
-    text = run_cli("budget", "--design", COMB, "--force", "1000")
-    assert "warning: --force = 1000 N" in text.stdout and "warning: --force" in text.stderr
+    text = run_cli("budget", "--design", COMB, "--force-N", "1000")
+    assert "warning: --force-N = 1000 N" in text.stdout and "warning: --force-N" in text.stderr
 
 
 def test_a_combs_zero_terms_read_0_not_minus_0(tmp_path):
@@ -163,3 +163,83 @@ def test_the_texts_notes_read_as_words_not_python_values():
     assert not [n for n in notes if re.search(r"\d\.\d{6,}", n)]
     doc = json.loads(run_cli("budget", "--design", design, "--json").stdout)
     assert doc["notes"]["calibration_gauge_fits"] is True
+
+
+
+def command_help(command: str) -> str:
+    """``tactcad COMMAND --help``'s text, from the command's own parser."""
+    import argparse
+
+    from tactcad import cli
+
+    sub = next(a for a in cli.build_parser([command])._actions
+               if isinstance(a, argparse._SubParsersAction))
+    return sub.choices[command].format_help()
+
+
+def test_force_and_step_are_named_with_their_units_as_grasps_force_N():
+    """budget's force and temperature step carry their units in their names, as grasp's
+    --force-N does (design --force and new --force mean "overwrite")."""
+    assert "--force-N FORCE_N" in command_help("grasp")
+    helptext = command_help("budget")
+    assert "--force-N FORCE_N" in helptext and "--delta-T-K DELTA_T_K" in helptext
+
+
+@pytest.mark.parametrize("old, new, value", [("--force", "--force-N", "0.05"),
+                                             ("--delta-T", "--delta-T-K", "4")])
+def test_the_earlier_names_still_work_hidden_and_said_renamed_on_one_line(old, new, value):
+    """--force and --delta-T, the earlier names: not in --help, still taken (the same
+    budget as the new name), and one line on stderr naming the new one; no Python
+    warning, no traceback."""
+    import re
+
+    assert not re.search(rf"{re.escape(old)}(?![-\w])", command_help("budget"))
+    by_new = run_cli("budget", "--design", TI, "--points", "2", new, value, "--json")
+    by_old = run_cli("budget", "--design", TI, "--points", "2", old, value, "--json")
+    assert by_old.returncode == 0 == by_new.returncode, by_old.stdout + by_old.stderr
+    assert json.loads(by_old.stdout) == json.loads(by_new.stdout)
+    assert by_new.stderr == ""
+    lines = by_old.stderr.splitlines()
+    assert len(lines) == 1 and old in lines[0] and new in lines[0], by_old.stderr
+    assert "renamed" in lines[0] and lines[0].startswith("tactcad: warning: ")
+    assert "Traceback" not in by_old.stderr and "DeprecationWarning" not in by_old.stderr
+    # given twice: still one line; a bad value refused in the option's own name
+    twice = run_cli("budget", "--design", TI, "--points", "2", old, value, old, value,
+                    "--quiet")
+    assert twice.returncode == 0 and twice.stderr.count("renamed") == 1, twice.stderr
+    bad = run_cli("budget", "--design", TI, old, "-1", "--json")
+    assert bad.returncode == 2 and old in json.loads(bad.stdout)["error"]["message"]
+
+
+def test_a_combs_crosstalk_term_has_a_neutral_key_and_the_old_one_deprecated():
+    """A monolithic comb has no stack: its crosstalk term is keyed ``crosstalk`` (and its
+    notes ``crosstalk_N_per_N``, ``crosstalk_basis``). The old ``stack_crosstalk`` keys are
+    still written, the same values, listed in ``deprecated_keys`` (old -> new), and no sum
+    counts the term twice."""
+    import math
+
+    r = run_cli("budget", "--design", COMB, "--points", "3", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["deprecated_keys"] == {"stack_crosstalk": "crosstalk",
+                                    "stack_crosstalk_N_per_N": "crosstalk_N_per_N",
+                                    "stack_crosstalk_basis": "crosstalk_basis"}
+    keys = [s["key"] for s in d["sources"]]
+    assert "crosstalk" in keys and "stack_crosstalk" not in keys
+    assert "(comb-beam)" in d["notes"]["crosstalk_basis"] and d["notes"]["crosstalk_N_per_N"] > 0
+    for old, new in d["deprecated_keys"].items():
+        if old in d["notes"]:
+            assert d["notes"][old] == d["notes"][new]
+    for u in d["units"]:
+        term = u["sources"]["crosstalk"]
+        assert min(term["before_rel"]) > 0 and u["sources"]["stack_crosstalk"] == term
+        after = [u["sources"][k]["after_rel"] for k in keys]
+        for i, rss in enumerate(u["rss_rel"]):  # every source once: crosstalk not twice
+            if rss is not None:
+                assert rss == pytest.approx(math.sqrt(sum(a[i] ** 2 for a in after)), rel=1e-5)
+                assert u["worst_case_rel"][i] == pytest.approx(
+                    sum(abs(a[i]) for a in after), rel=1e-5)
+        assert "stack_crosstalk" not in u["dominant"]
+    text = run_cli("budget", "--design", COMB, "--points", "3").stdout
+    assert "| crosstalk |" in text and "stack crosstalk" not in text
+    assert "  crosstalk_basis: " in text and "stack_crosstalk" not in text

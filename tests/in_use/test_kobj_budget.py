@@ -161,14 +161,14 @@ def test_manufacturing_tolerance_from_the_web_band_and_gone_after_calibration(pl
     assert np.all(got.after == 0)
 
 
-def test_stack_crosstalk_from_the_sensitivity_matrix(plan):
+def test_crosstalk_from_the_sensitivity_matrix(plan):
     from tactcad.mechanics.stack_crosstalk import VERIFY_MODEL, plan_crosstalk
 
     ctx = _uncoupled(_context(plan))
     unit = _first_unit(ctx)
     k_obj = 4.0
     op = _op(ctx, unit, np.array([k_obj]))
-    got = kb.stack_crosstalk(ctx, unit, op)
+    got = kb.crosstalk(ctx, unit, op)
     r = plan_crosstalk(plan, VERIFY_MODEL)
     S, numbers = r.sensitivity, list(r.elements)
     travel = op.travel[0]
@@ -513,21 +513,21 @@ def test_a_combs_crosstalk_term_reads_the_combs_own_level(ti_plan):
                        force_gauge=calibration_gauge(comb))
     r = plan_crosstalk(comb, "comb-beam")
     for u in b.units:
-        term = u["sources"]["stack_crosstalk"]
+        term = u["sources"]["crosstalk"]
         assert "not_modelled" not in term and min(term["before_rel"]) > 0
         # its decoupling leaves its error estimate of it, never more than all of it (the
         # comb-beam level's estimate is over 100 %: the term grew after its correction)
         left = min(r.error_estimate_rel, 1.0)
         assert np.allclose(term["after_rel"], np.array(term["before_rel"]) * left)
         assert all(a <= b for a, b in zip(term["after_rel"], term["before_rel"]))
-    assert b.notes["stack_crosstalk_N_per_N"] == pytest.approx(r.crosstalk_rel, rel=1e-12)
-    assert "(comb-beam)" in b.notes["stack_crosstalk_basis"]
-    assert f"{r.error_estimate_rel:.3g}" in b.notes["stack_crosstalk_basis"]
-    assert ("remove nothing" in b.notes["stack_crosstalk_basis"]) == (r.error_estimate_rel >= 1)
-    assert "| stack crosstalk | not modelled |" not in render(b)
+    assert b.notes["crosstalk_N_per_N"] == pytest.approx(r.crosstalk_rel, rel=1e-12)
+    assert "(comb-beam)" in b.notes["crosstalk_basis"]
+    assert f"{r.error_estimate_rel:.3g}" in b.notes["crosstalk_basis"]
+    assert ("remove nothing" in b.notes["crosstalk_basis"]) == (r.error_estimate_rel >= 1)
+    assert "| crosstalk | not modelled |" not in render(b)
     stacked = kb.kobj_budget(ti_plan, (1.0, 5.0), 0.1, 5.0, points=3,
                              force_gauge=calibration_gauge(ti_plan))
-    assert "(stack-timoshenko)" in stacked.notes["stack_crosstalk_basis"]
+    assert "(stack-timoshenko)" in stacked.notes["crosstalk_basis"]
 
 
 def test_a_construction_no_crosstalk_level_describes_leaves_the_term_out(monkeypatch):
@@ -545,10 +545,10 @@ def test_a_construction_no_crosstalk_level_describes_leaves_the_term_out(monkeyp
     b = kb.kobj_budget(comb, (1.0, 5.0), 0.05, 5.0, points=3,
                        force_gauge=calibration_gauge(comb))
     for u in b.units:
-        assert u["sources"]["stack_crosstalk"]["not_modelled"] == why
-        assert u["sources"]["stack_crosstalk"]["after_rel"] == [0.0] * 3  # not in the sums
-    assert b.notes["stack_crosstalk_basis"] == f"not modelled, left out of the sums: {why}"
-    assert "| stack crosstalk | not modelled |" in render(b)
+        assert u["sources"]["crosstalk"]["not_modelled"] == why
+        assert u["sources"]["crosstalk"]["after_rel"] == [0.0] * 3  # not in the sums
+    assert b.notes["crosstalk_basis"] == f"not modelled, left out of the sums: {why}"
+    assert "| crosstalk | not modelled |" in render(b)
 
 
 def _unit_record(reference, measuring, others_rel, coplanarity_after_rel):

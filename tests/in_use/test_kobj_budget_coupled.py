@@ -183,14 +183,14 @@ def test_thermal_zero_through_the_coupled_chain(chain):
         assert got == pytest.approx(want, rel=AGREEMENT_REL)
 
 
-def test_stack_crosstalk_through_the_coupled_chain(chain):
+def test_crosstalk_through_the_coupled_chain(chain):
     term = kb._crosstalk(chain.ctx)  # the comb's at comb-beam, the stack's at stack-timoshenko
     numbers, per_newton = term.numbers, term.per_newton
     if not np.any(per_newton):
         pytest.skip("no crosstalk model for this construction")
     for unit in chain.units:
         op = chain.op(unit)
-        got = kb.stack_crosstalk(chain.ctx, unit, op).before
+        got = kb.crosstalk(chain.ctx, unit, op).before
         k = np.array([chain.k[n] for n in numbers])
         seen = per_newton @ (k[:, None] * op.k_obj * op.travel / (k[:, None] + op.k_obj))
         i_m, i_r = numbers.index(unit.measuring), numbers.index(unit.reference)

@@ -8,7 +8,8 @@ import warnings
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
 from tactcad.commands.finite_json import dumps
-from tactcad.commands.options import count, number, output_file, keep_option_defaults
+from tactcad.commands.options import (add_renamed_option, count, keep_option_defaults, number,
+                                      output_file)
 from tactcad.errors import PastRatingWarning
 from tactcad.mechanics.ladder import models
 
@@ -24,7 +25,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "K_obj of a log-spaced grid over the requirements' K_obj range: the "
                     "relative K_obj error (eq. 3 and its derivatives) from read-out noise and "
                     "quantisation, thermal zero and span over the temperature step, "
-                    "manufacturing tolerance, stack crosstalk, tissue coupling (a half-space "
+                    "manufacturing tolerance, crosstalk, tissue coupling (a half-space "
                     "sample under the design's tip faces), the gauge model and the "
                     "calibration, before and after the correction each gets (calibration, "
                     "decoupling matrix, coupled inversion); their RSS and worst-case sum, and "
@@ -33,12 +34,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_cache_args(p)
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for K and the gauge strain (default closed-form)")
-    p.add_argument("--force", type=number(0, 1000, "N", lo_open=True), default=None,
-                   metavar="N", help="force on the reference element at the reading (N; default "
-                                     "the design's full-scale force)")
-    p.add_argument("--delta-T", dest="delta_T", type=number(0, 100, "K"),
-                   default=DEFAULT_DELTA_T_K, metavar="K",
-                   help="temperature step between tare and reading (K; default %(default)s K)")
+    force = p.add_argument("--force-N", dest="force_N", type=number(0, 1000, "N", lo_open=True),
+                           default=None, help="force on the reference element at the reading "
+                                              "(N; default the design's full-scale force)")
+    step = p.add_argument("--delta-T-K", dest="delta_T_K", type=number(0, 100, "K"),
+                          default=DEFAULT_DELTA_T_K,
+                          help="temperature step between tare and reading (K; default "
+                               "%(default)s K)")
+    # the earlier names (--force is "overwrite" to design and new): taken, said renamed
+    add_renamed_option(p, "--force", force)
+    add_renamed_option(p, "--delta-T", step)
     p.add_argument("--points", type=count(2, 101, "K_obj grid points"), default=BUDGET_POINTS,
                    help="log-spaced K_obj points over the range (default %(default)s)")
     p.add_argument("--calibration", metavar="FILE", default=None,
@@ -83,9 +88,10 @@ def run(args: argparse.Namespace) -> int:
     progress = progress_from_args(args)
     cal = calibrations_from_file(args.calibration, plan) if args.calibration else None
     req = requirements_of(plan)
-    force = req.full_scale_force_N if args.force is None else args.force
-    progress(f"budget of {plan.name} at {force:g} N, {args.delta_T:g} K ({args.model})")
-    record, budget = budget_record(plan, args.model, args.force, args.delta_T, args.points, cal)
+    force = req.full_scale_force_N if args.force_N is None else args.force_N
+    progress(f"budget of {plan.name} at {force:g} N, {args.delta_T_K:g} K ({args.model})")
+    record, budget = budget_record(plan, args.model, args.force_N, args.delta_T_K, args.points,
+                                   cal)
     text = render(budget)
     past = past_rating_words(force, req.full_scale_force_N, overload_forces(plan, budget))
     if past:  # a budget at a force the design is not rated for: said, in the text and --json
@@ -99,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def overload_forces(plan, budget) -> dict[int, tuple[float, float]]:
-    """Each pressed element -> (the ``--force`` at which it reaches its overload limit, that
+    """Each pressed element -> (the ``--force-N`` at which it reaches its overload limit, that
     limit) (N; yield with the design's safety factor or the gauge's largest strain, closed
     form, :func:`tactcad.studies.verification.element_overload_limits_N`). A reference
     carries the force itself; its measuring element F R K_m / K_r (eq. 1), the most at the
@@ -125,19 +131,19 @@ def past_rating_words(force_N: float, rated_N: float,
     """What a budget at ``force_N`` past the design's rating means, or "" within it.
 
     Args:
-        force_N: the force on each unit's reference (N), as ``--force`` asks.
+        force_N: the force on each unit's reference (N), as ``--force-N`` asks.
         rated_N: the design's rated full-scale force (N).
         overload: element -> (the force at which it reaches its overload limit, that limit)
             (N, :func:`overload_forces`).
 
     Returns:
-        One sentence naming ``--force``, its value, the rating and, when the force is past
+        One sentence naming ``--force-N``, its value, the rating and, when the force is past
         an element's overload, the least such force and its element; "" at or below the
         rating.
     """
     if force_N <= rated_N * (1 + 1e-9):
         return ""
-    words = (f"--force = {force_N:g} N is past the design's rated full-scale force "
+    words = (f"--force-N = {force_N:g} N is past the design's rated full-scale force "
              f"{rated_N:g} N: the budget is of a reading past full scale")
     if overload:
         element, (at, limit) = min(overload.items(), key=lambda item: item[1])
@@ -145,7 +151,7 @@ def past_rating_words(force_N: float, rated_N: float,
             words += (f", and past {at:.4g} N, where element {element} reaches its overload "
                       f"limit {limit:.4g} N (yield with the safety factor, or the gauge's "
                       f"largest strain): it is damaged before it reads")
-    return words + f" (allowed without this warning: --force <= {rated_N:g})"
+    return words + f" (allowed without this warning: --force-N <= {rated_N:g})"
 
 
 def _pct(x) -> str:

@@ -49,6 +49,52 @@ def renamed_option(old: str, new: str, meaning: str) -> Callable[[str], Any]:
     return parse
 
 
+class RenamedOption(argparse.Action):
+    """An option's earlier name, still taken (:func:`add_renamed_option`): hidden from
+    ``--help``, it stores its value where the option's new name does and says once, on
+    stderr, that the option was renamed and to which name (one line, no Python warning).
+
+    Attributes:
+        renamed_to: the option's new name (``--force-N``).
+    """
+
+    def __init__(self, option_strings: Sequence[str], dest: str, renamed_to: str = "",
+                 **kwargs: Any):
+        super().__init__(option_strings, dest, **kwargs)
+        self.renamed_to = renamed_to
+        self.said = False  # the parser is built anew for every run: once per run
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        import sys
+
+        setattr(namespace, self.dest, values)
+        if not self.said:
+            self.said = True
+            old = option_string or self.option_strings[0]
+            print(f"tactcad: warning: {old} was renamed {self.renamed_to}; {old} is "
+                  f"deprecated and will be removed: give {self.renamed_to}",
+                  file=sys.stderr, flush=True)
+
+
+def add_renamed_option(parser: argparse.ArgumentParser, old: str,
+                       new: argparse.Action) -> argparse.Action:
+    """Keep ``old``, an option's earlier name, working as a deprecated alias of ``new``:
+    the same dest, type (so the same refusals), default and metavar, hidden from
+    ``--help``, and one line on stderr when it is given (:class:`RenamedOption`).
+
+    Args:
+        parser: the command's parser. old: the earlier name (``--force``).
+        new: the action of the option's new name (what ``add_argument`` returned).
+
+    Returns:
+        The alias's action.
+    """
+    return parser.add_argument(old, dest=new.dest, type=new.type, default=new.default,
+                               metavar=new.metavar, action=RenamedOption,
+                               renamed_to=option_name(new), help=argparse.SUPPRESS)
+
+
 def number(lo: float | None = None, hi: float | None = None, unit: str = "", *,
            lo_open: bool = False) -> Callable[[str], float]:
     """An argparse type: a finite number ``lo <= x <= hi`` (``lo < x`` with
@@ -282,9 +328,12 @@ def warn_repeated(parser: argparse.ArgumentParser, args: argparse.Namespace,
         for action in p._actions:
             if type(action) is not argparse._StoreAction or not action.option_strings:
                 continue
+            # an earlier name (RenamedOption) sets the same value: said as one option
+            names = (*action.option_strings,
+                     *(s for a in p._actions if isinstance(a, RenamedOption)
+                       and a.dest == action.dest for s in a.option_strings))
             spots = [i for i, token in enumerate(given)
-                     if token in action.option_strings
-                     or token.startswith(tuple(f"{o}=" for o in action.option_strings))]
+                     if token in names or token.startswith(tuple(f"{o}=" for o in names))]
             if len(spots) > 1:
                 values = [given[i].split("=", 1)[1] if "=" in given[i] else
                           " ".join(given[i + 1:i + 1 + _arity(action)]) for i in spots]
@@ -333,21 +382,49 @@ def grasp_option_error(exc, args: Any):
         The error naming the option, or ``exc`` when no option sets its field.
     """
     from tactcad.errors import DesignError
-    from tactcad.in_use.grasp_experiment import ACTIVE_SET_PASSES, UnsettledContact
+    from tactcad.in_use.grasp_experiment import UnsettledContact
 
-    slab = getattr(args, "slab_thickness_mm", None)
-    if isinstance(exc, UnsettledContact) and slab is not None:
-        return DesignError("--slab-thickness-mm", slab,
-                           f"a slab on which the contact settles (thicker than {slab:g} mm)",
-                           f"the posts' contact (their stops and lift-off) did not settle "
-                           f"within {ACTIVE_SET_PASSES} passes of its solve on a {slab:g} mm "
-                           "slab: give a thicker one")
+    if isinstance(exc, UnsettledContact):
+        return unsettled_slab_error(exc, getattr(args, "slab_thickness_mm", None))
     option = GRASP_OPTION_OF.get(exc.field)
     if option is None:
         return exc
     given = getattr(args, option.removeprefix("--").replace("-", "_"), None)
     value = list(given) if isinstance(given, (list, tuple)) else exc.value
     return DesignError(option, value, exc.allowed, exc.why, alternatives=exc.alternatives)
+
+
+def unsettled_slab_error(exc, given_mm: float | None):
+    """An unsettled contact (:class:`~tactcad.in_use.grasp_experiment.UnsettledContact`)
+    said as ``--slab-thickness-mm``: its value (as given, else the default thickness the
+    grasp was solved on) and the thicker range of the option to give, whether the option
+    was given or not.
+
+    Args:
+        exc: the refusal; its ``value`` is the thickness solved on (mm) where its field is
+            ``jaw.slab_thickness_mm``.
+        given_mm: ``--slab-thickness-mm`` as given (mm), None at its default.
+
+    Returns:
+        A :class:`~tactcad.errors.DesignError` of ``--slab-thickness-mm``.
+    """
+    from tactcad.errors import DesignError
+    from tactcad.in_use.grasp_experiment import ACTIVE_SET_PASSES
+    from tactcad.studies.grasp_report import GRASP_NUMBERS
+
+    solved = exc.value if exc.field == "jaw.slab_thickness_mm" else None
+    slab = given_mm if given_mm is not None else solved
+    hi = GRASP_NUMBERS["slab_thickness_mm"][1]
+    allowed = (f"> {slab:g} ... {hi:g} mm (a slab thicker than {slab:g} mm, on which the "
+               "contact settles)" if isinstance(slab, (int, float)) else
+               f"a thicker slab, at most {hi:g} mm, on which the contact settles")
+    on = f"a {slab:g} mm slab" if isinstance(slab, (int, float)) else "the slab"
+    why = (f"the tips' contact (their stops and lift-off) did not settle within "
+           f"{ACTIVE_SET_PASSES} passes of its solve on {on}")
+    why += (": give a thicker one" if given_mm is not None else
+            ", the default thickness (--slab-thickness-mm not given: the design's "
+            "[tissue_slab] or the assumed one): give a thicker one with --slab-thickness-mm")
+    return DesignError("--slab-thickness-mm", slab, allowed, why)
 
 
 COMMON_OPTIONS = frozenset({"design", "overrides", "json", "quiet", "cache", "no_cache", "func",

@@ -231,8 +231,11 @@ def solve_tips(travel_mm, stiffness_N_per_mm, engage_mm, compliance) -> TipSolut
 
 class UnsettledContact(DesignError):
     """The tips' contact (their stops and lift-off) did not settle in
-    :data:`ACTIVE_SET_PASSES` passes of :func:`solve_tips`: on a very thin tissue layer;
-    a command names its ``--slab-thickness-mm`` (:func:`tactcad.commands.options.grasp_option_error`)."""
+    :data:`ACTIVE_SET_PASSES` passes of :func:`solve_tips`: on a very thin tissue layer.
+    Raised by :func:`press` as the field ``jaw.slab_thickness_mm`` with the thickness the
+    solve was on (mm; given or the default); a command names its ``--slab-thickness-mm``
+    with that value, given or default, and the thicker range
+    (:func:`tactcad.commands.options.grasp_option_error`)."""
 
 
 @dataclass(frozen=True)
@@ -416,11 +419,31 @@ def tissue_thickness_mm(radius_mm: np.ndarray, thickness_mm: float, profile: str
 
 def press(tips: Tips, compliance: np.ndarray, slab_mm: float, angle_deg: float,
           profile: str = DEFAULT_PROFILE) -> TipSolution:
-    """The tips' solution with the jaw closed to ``angle_deg`` on the tissue's profile."""
+    """The tips' solution with the jaw closed to ``angle_deg`` on the tissue's profile.
+
+    Args:
+        tips: the layout's tips. compliance: the tissue's C (mm/N), shape (m, m).
+        slab_mm: the tissue's thickness (mm; a wedge's at the last tip).
+        angle_deg: the jaw's closing angle (degrees). profile: ``slab`` or ``wedge``.
+
+    Returns:
+        :class:`TipSolution`.
+
+    Raises:
+        UnsettledContact: the contact did not settle on this thickness, as the field
+            ``jaw.slab_thickness_mm`` with ``slab_mm``.
+    """
     thickness = tissue_thickness_mm(tips.radius_mm, slab_mm, profile)
     travel = np.array([indentation_mm(t, r, angle_deg)
                        for t, r in zip(thickness, tips.radius_mm)])
-    return solve_tips(travel, tips.stiffness_N_per_mm, tips.engage_mm, compliance)
+    try:
+        return solve_tips(travel, tips.stiffness_N_per_mm, tips.engage_mm, compliance)
+    except UnsettledContact as exc:  # said as the thickness it happened on, not "grasp"
+        raise UnsettledContact("jaw.slab_thickness_mm", float(slab_mm),
+                               f"a tissue thicker than {float(slab_mm):g} mm, on which the "
+                               "contact settles", f"{exc.allowed} was not reached: the "
+                               f"stops and lift-off did not settle on the {float(slab_mm):g} "
+                               f"mm {profile}") from None
 
 
 def angle_for_force(tips: Tips, compliance: np.ndarray, slab_mm: float, opening_deg: float,

@@ -58,7 +58,9 @@ every K_obj of the grid, before and after the correction the lab applies):
     (the ladder's closed form); signs taken worst. Calibration measures each K (eq. 5),
     so it removes this fixed error entirely: what remains is the calibration's own
     uncertainty, source (h). After calibration (d) is 0.
-(e) stack crosstalk (the key of every construction's crosstalk term): the neighbours' tip
+(e) crosstalk (``crosstalk``, every construction's: a stacked array's clamped stack, a
+    monolithic comb's row sheets and spine; it was keyed ``stack_crosstalk``, a key the
+    record still writes beside it, deprecated: :data:`DEPRECATED_KEYS`): the neighbours' tip
     forces (every tip pressed by the same body travel Δ, eq. 1) times each gauge's crosstalk
     in newtons per newton of neighbour load (S_ij / S_ii of
     :func:`tactcad.mechanics.crosstalk_ladder.plan_crosstalk` at the construction's
@@ -488,7 +490,7 @@ def _crosstalk_reason(plan) -> str:
     return crosstalk_reason(plan)
 
 
-def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
+def crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     """(e) The neighbours' tip forces (every tip pressed by the same travel Δ, eq. 1) times
     each gauge's crosstalk in N per N of neighbour load at the construction's crosstalk
     level (:class:`CrosstalkTerm`), a fraction of each element's own force, read by the
@@ -504,6 +506,11 @@ def stack_crosstalk(ctx: Context, unit: Unit, op: Operating) -> Contribution:
     rel = np.abs(reading_error_rel(ctx, unit, op.k_obj, de_m=seen[i_m] / (op.k_m * e_m),
                                    de_r=seen[i_r] / (op.k_r * e_r)))
     return Contribution(rel, rel * left_by_decoupling(error))
+
+
+#: The crosstalk term's earlier name (:func:`crosstalk`), a stacked array's word for every
+#: construction's term; deprecated, kept for callers of this module.
+stack_crosstalk = crosstalk
 
 
 def left_by_decoupling(error_rel: float) -> float:
@@ -1191,7 +1198,7 @@ SOURCES = (
     Source("thermal_span", "thermal span", thermal_span, "none"),
     Source("manufacturing_tolerance", "manufacturing tolerance", manufacturing_tolerance,
            "calibration measures each K: none remains (its error is the calibration's)"),
-    Source("stack_crosstalk", "stack crosstalk", stack_crosstalk,
+    Source("crosstalk", "crosstalk", crosstalk,
            "the decoupling matrix: its model's error estimate remains", _crosstalk_reason),
     Source("tissue_coupling", "tissue coupling", tissue_coupling,
            "the coupled inversion: the coupled model's error remains"),
@@ -1207,6 +1214,23 @@ SOURCES = (
     Source("gauge_hysteresis", "gauge hysteresis (load-unload)", gauge_hysteresis, "none"),
 )
 SOURCE_KEYS = tuple(s.key for s in SOURCES)
+
+#: JSON keys of the budget's record that were renamed, old -> new. The old key is still
+#: written beside the new one, with the same value (a source's in each unit's ``sources``,
+#: a note's in ``notes``), and the record lists this mapping as ``deprecated_keys``; the
+#: sums (``rss_rel``, ``worst_case_rel``, ``dominant``) and the ``sources`` list count each
+#: source once, under its new key. The old keys go in a later release.
+DEPRECATED_KEYS = {"stack_crosstalk": "crosstalk",
+                   "stack_crosstalk_N_per_N": "crosstalk_N_per_N",
+                   "stack_crosstalk_basis": "crosstalk_basis"}
+
+
+def with_deprecated_keys(mapping: dict) -> dict:
+    """``mapping`` (a unit's ``sources``, the ``notes``) with each old key of
+    :data:`DEPRECATED_KEYS` whose new key it holds added after its own keys, the same value;
+    a new dict, ``mapping`` unchanged."""
+    return {**mapping, **{old: mapping[new] for old, new in DEPRECATED_KEYS.items()
+                          if new in mapping}}
 
 
 # ---------------------------------------------------------------------------
@@ -1320,14 +1344,20 @@ class KobjBudget:
         return (math.inf if rss is None else float(rss)), float(a["uncertainty_rel"][i])
 
     def as_json(self) -> dict:
+        """The record ``tactcad budget --json`` prints: each unit's ``sources`` and the
+        ``notes`` also under the renamed keys' old names, and ``deprecated_keys`` mapping
+        each old name to the new (:data:`DEPRECATED_KEYS`; the sums count each source
+        once)."""
+        units = [{**u, "sources": with_deprecated_keys(u["sources"])} for u in self.units]
         return {"design": self.design, "model": self.model, "force_N": self.force_N,
                 "delta_T_K": self.delta_T_K,
                 "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
                 "K_obj_N_per_mm": list(self.k_obj),
                 "sources": [{"key": s.key, "words": s.words, "correction": s.correction}
                             for s in SOURCES],
-                "units": self.units, "array": self.array, "notes": self.notes,
-                "tip_height": self.tip_height}
+                "units": units, "array": self.array,
+                "notes": with_deprecated_keys(self.notes),
+                "tip_height": self.tip_height, "deprecated_keys": dict(DEPRECATED_KEYS)}
 
 
 def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
@@ -1402,11 +1432,11 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     gauge, gauge_source = force_gauge.gauge, force_gauge.source
     need = (calibration_resolution_need(ctx, pairs, units, k_obj) if not calibrations
             else None)
-    crosstalk = ctx.once("crosstalk", lambda: _crosstalk(ctx))
+    term = ctx.once("crosstalk", lambda: _crosstalk(ctx))
     notes = {
-        "stack_crosstalk_N_per_N": (float(np.max(np.abs(crosstalk.per_newton)))
-                                    if crosstalk.per_newton.size else 0.0),
-        "stack_crosstalk_basis": crosstalk_basis(plan, crosstalk),
+        "crosstalk_N_per_N": (float(np.max(np.abs(term.per_newton)))
+                              if term.per_newton.size else 0.0),
+        "crosstalk_basis": crosstalk_basis(plan, term),
         "operating_point": f"each unit pressed until its reference carries {force_N:.4g} N "
                            f"(eq. 1); the zero terms scale as 1/force",
         "temperature_step": f"{delta_T_K:g} K between tare and reading; the self-heating "

@@ -94,7 +94,7 @@ def budget_record(plan, model: str = "closed-form", force_N: float | None = None
                          force_gauge=calibration_gauge(plan),
                          readable_within_rel=req.kobj_resolution_rel)
     record = {**budget.as_json(), "kobj_range_reason": req.reasons["kobj_range_N_per_mm"],
-              "force_reason": "--force" if force_N is not None
+              "force_reason": "--force-N" if force_N is not None
               else f"full-scale force: {req.reasons['full_scale_force_N']}"}
     return record, budget
 
