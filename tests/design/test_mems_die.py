@@ -991,7 +991,7 @@ def test_modal_budget_readout_and_thermal_print_the_dies_own_figures_not_an_arra
     assert binds.startswith("the die's failure probability, every beam on its deepest stop")
     assert d.die.full_scale_force_N < largest < 1.1 * d.die.full_scale_force_N
     assert sorted(p.name for p in tmp_path.iterdir()) == [design.name]  # nothing written
-    for argv, option in ((("modal", "--model", "fem3d"), "--model"),
+    for argv, option in ((("modal", "--model", "fem2d"), "--model"),
                          (("budget", "--delta-T-K", "3"), "--delta-T-K"),
                          (("readout", "--model", "beam"), "--model"),
                          (("thermal", "--element", "2"), "--element")):

@@ -9,7 +9,8 @@ import pytest
 
 from conftest import run_cli
 
-TAKES = {"verify": ("closed-form",), "readout": ("closed-form",), "modal": ("closed-form",),
+TAKES = {"verify": ("closed-form",), "readout": ("closed-form",),
+         "modal": ("closed-form", "fem3d"),
          "budget": ("closed-form",), "thermal": ("closed-form",), "grasp": ("closed-form",),
          "strength": ("closed-form",), "stiffness": ("closed-form", "fem3d")}
 

@@ -24,7 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--element", type=element_number, default=None,
                    help="element number of the design (default: every distinct element)")
     p.add_argument("--model", choices=modal_models(), default="closed-form",
-                   help=f"modal level: {modal_levels_help()} (default %(default)s)")
+                   help=f"modal level: {modal_levels_help()}; a silicon die's design: "
+                        "closed-form or fem3d (each row's beam on its frame, as `tactcad die "
+                        "--fem3d` solves it, about a minute and a half) (default %(default)s)")
     p.add_argument("--modes", type=count(1, 20, "modes per element"), default=3,
                    help="modes per element, 1 ... 20 (FEM levels; the closed form gives the "
                         "first; default %(default)s)")

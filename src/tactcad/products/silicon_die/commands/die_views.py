@@ -1,7 +1,8 @@
 """The array commands on a silicon die's design file: ``modal``, ``budget``, ``readout``,
 ``thermal``, ``verify``, ``grasp``, ``crosstalk``, ``strength``, ``stiffness`` and
-``tolerance`` print the die's own resonances, K_obj budget, piezoresistive read-out, its
-temperature terms, its verification matrix (:func:`die_verification`), the grasp in its jaw
+``tolerance`` print the die's own resonances (each row's at the closed form or fem3d), K_obj
+budget, piezoresistive read-out, its temperature terms, its verification matrix
+(:func:`die_verification`), the grasp in its jaw
 (:mod:`tactcad.products.silicon_die.in_use.die_grasp`), the crosstalk through its handle and attach
 (:mod:`tactcad.products.silicon_die.mechanics.die_crosstalk`), each row's root stress against the strength of
 etched silicon, each row's K at the closed form or fem3d, and the Monte Carlo of its process
@@ -25,6 +26,7 @@ from typing import Any, Callable
 
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
+from tactcad.products.silicon_die.studies.die_reports import DIE_MODAL_LEVELS
 from tactcad.products.silicon_die.studies.die_verification import die_verification
 
 #: The options of an array command a die's view reads, by command (the others are refused).
@@ -41,7 +43,7 @@ DIE_STIFFNESS_LEVELS = ("closed-form", "fem3d")
 #: :func:`check_die_crosstalk_level`); ``--model`` left at the array command's default
 #: (``auto`` for verify) is the first.
 DIE_MODEL_LEVELS: dict[str, tuple[str, ...]] = {
-    "modal": ("closed-form",), "budget": ("closed-form",), "readout": ("closed-form",),
+    "modal": DIE_MODAL_LEVELS, "budget": ("closed-form",), "readout": ("closed-form",),
     "thermal": ("closed-form",), "verify": ("closed-form",), "grasp": ("closed-form",),
     "strength": ("closed-form",), "stiffness": DIE_STIFFNESS_LEVELS}
 
@@ -88,15 +90,12 @@ def _planned(design: Path, args: argparse.Namespace):
 
 
 def _modal(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.commands.die import mode_lines, modes_json
-    from tactcad.products.silicon_die.mechanics.die_dynamics import die_modes
+    from tactcad.commands import progress_from_args
+    from tactcad.products.silicon_die.studies.die_reports import modes_report
 
-    plan = _planned(design, args).plan
-    modes = die_modes(plan)
-    return ({"design": str(design), "die": plan.name, "resonance_Hz": modes_json(modes)},
-            [f"die {plan.name}: each row's first bending mode, its beam on the frame (the "
-             "closed form's K)",
-             *mode_lines(modes)])
+    model = die_model(args, "modal")  # before the die is planned: a refusal at once
+    report, lines = modes_report(_planned(design, args).plan, model, progress_from_args(args))
+    return {"design": str(design), **report}, lines
 
 
 def _budget(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:

@@ -10,19 +10,38 @@ Units: um, N/mm, N, MPa, s.
 from __future__ import annotations
 
 import json
+import time
+from typing import Callable
 
 from tactcad.products.silicon_die.studies.die_verification import die_verification
 from tactcad.studies.verification import matrix_table
 
 
-def die_beam_fem3d_kept(plan, beam):
+def die_beam_fem3d_kept(plan, beam, reused: Callable[[str], None] | None = None,
+                        solving: Callable[[], None] | None = None):
     """:func:`tactcad.products.silicon_die.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
-    same plan and beam (a second run of the same die solves nothing)."""
+    same plan and beam (a second run of the same die solves nothing).
+
+    Args:
+        plan: the die's plan. beam: one of its beams.
+        reused: called once, with where it came from, when the solve is a kept one
+            (:func:`tactcad.store.kept_result`).
+        solving: called once before the beam is solved (not when a kept solve is reused).
+
+    Returns:
+        :class:`tactcad.products.silicon_die.mechanics.die_fem3d.DieBeamFem` (N/mm, Hz, s).
+    """
     from tactcad.products.silicon_die.mechanics.die_fem3d import die_beam_fem3d
     from tactcad.store import kept_result
 
-    return kept_result("die beam fem3d", lambda: die_beam_fem3d(plan, beam),
-                       json.dumps(plan.as_json(), sort_keys=True, default=str), beam)
+    def solve():
+        if solving is not None:
+            solving()
+        return die_beam_fem3d(plan, beam)
+
+    return kept_result("die beam fem3d", solve,
+                       json.dumps(plan.as_json(), sort_keys=True, default=str), beam,
+                       reused=reused)
 
 
 def strength_report(plan) -> tuple[dict, list[str]]:
@@ -133,3 +152,94 @@ def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]
     return report, lines
 
 
+#: The die's modal levels: the closed form (Rayleigh with the post as a tip mass) and fem3d
+#: (each row's beam on its frame, :func:`die_beam_fem3d_kept`: the solve ``tactcad die
+#: --fem3d`` and ``stiffness --model fem3d`` make and keep).
+DIE_MODAL_LEVELS = ("closed-form", "fem3d")
+
+
+def modes_report(plan, model: str = "closed-form",
+                 progress: Callable[[str], None] | None = None) -> tuple[dict, list[str]]:
+    """Each row's first resonance, its beam with its post on the frame, at ``model``, with
+    the level's error estimate and cost: one record of the same keys at every level, for
+    ``tactcad modal`` on a die's file and :meth:`tactcad.api.DieProject.modes`.
+
+    At ``closed-form`` a row's first frequency is Rayleigh's
+    (:func:`tactcad.products.silicon_die.mechanics.die_dynamics.beam_modes`), its error
+    estimate :data:`~tactcad.products.silicon_die.mechanics.die_dynamics.CLOSED_FORM_F1_ERROR_REL`;
+    at ``fem3d`` it is the die's fem3d solve (:func:`die_beam_fem3d_kept`, the one ``tactcad
+    die --fem3d`` makes: kept in the result store, so a second run solves nothing), its
+    error estimate the extrapolation's change, with the closed form's error against it.
+
+    Args:
+        plan: the die's plan. model: ``closed-form`` or ``fem3d``.
+        progress: told what is solved or reused (fem3d); None says nothing.
+
+    Returns:
+        (report, text lines): the report's ``rows`` hold, per row, ``first_Hz`` (Hz),
+        ``first_Hz_error_rel``, ``wall_time_s`` (s; a reused solve's the run's that kept it),
+        ``reused``, ``dofs`` (None at the closed form), ``closed_form_Hz`` and
+        ``closed_form_error_rel`` (the closed form's against this level; None at the closed
+        form); ``resonance_Hz`` the closed form's Rayleigh and exact figures, as the die's
+        record holds them.
+
+    Raises:
+        ValueError: ``model`` is not one of :data:`DIE_MODAL_LEVELS`.
+    """
+    from tactcad.products.silicon_die.mechanics.die_dynamics import (CLOSED_FORM_F1_ERROR_REL,
+                                                                     beam_modes)
+
+    if model not in DIE_MODAL_LEVELS:
+        raise ValueError(f"model {model!r}: one of {', '.join(DIE_MODAL_LEVELS)} for a die")
+    say = progress or (lambda line: None)
+    rows, closed = [], {}
+    for beam in plan.beams[:: plan.columns]:
+        t0 = time.perf_counter()
+        modes = closed[beam.role] = beam_modes(plan, beam)
+        row = {"role": beam.role, "row": beam.row, "model": "closed-form",
+               "first_Hz": modes.rayleigh_Hz, "first_Hz_error_rel": CLOSED_FORM_F1_ERROR_REL,
+               "wall_time_s": time.perf_counter() - t0, "reused": False, "dofs": None,
+               "closed_form_Hz": modes.rayleigh_Hz, "closed_form_error_rel": None}
+        if model == "fem3d":
+            kept, role = [], beam.role
+
+            def on_reuse(where: str) -> None:
+                kept.append(True)
+                say(f"fem3d of die {plan.name}'s {role} beam: {where} (the same die)")
+
+            def on_solve() -> None:
+                say(f"fem3d of die {plan.name}'s {role} beam on its frame: two meshes, "
+                    "extrapolated (about 45 s a beam on two cores)")
+
+            fem = die_beam_fem3d_kept(plan, beam, reused=on_reuse, solving=on_solve)
+            row.update(model="fem3d", first_Hz=fem.f1_Hz, first_Hz_error_rel=fem.f1_error_rel,
+                       wall_time_s=fem.wall_time_s, reused=bool(kept), dofs=fem.dofs,
+                       closed_form_error_rel=modes.rayleigh_Hz / fem.f1_Hz - 1.0)
+        rows.append(row)
+    lowest = min(rows, key=lambda r: r["first_Hz"])
+    report = {"die": plan.name, "model": model, "rows": rows,
+              "lowest_first_Hz": lowest["first_Hz"], "lowest_role": lowest["role"],
+              "reused": all(r["reused"] for r in rows),
+              "resonance_Hz": {role: {"rayleigh": m.rayleigh_Hz, "exact": m.exact_Hz,
+                                      "rayleigh_error_rel": m.rayleigh_error_rel}
+                               for role, m in closed.items()}}
+    basis = ("Rayleigh with the post as a tip mass on the closed form's K"
+             if model == "closed-form" else
+             "scikit-fem, silicon's anisotropic stiffness, triquadratic hexahedra, two meshes "
+             "extrapolated")
+    lines = [f"die {plan.name}, model {model}: each row's first bending mode, its beam with "
+             f"its post on the frame ({basis})"]
+    for r in rows:
+        m = closed[r["role"]]
+        versus = (f"Rayleigh; the exact Euler-Bernoulli root {m.exact_Hz / 1e3:.4g} kHz, "
+                  f"{100 * m.rayleigh_error_rel:+.2f} %" if model == "closed-form" else
+                  f"closed form {r['closed_form_Hz'] / 1e3:.4g} kHz, "
+                  f"{100 * r['closed_form_error_rel']:+.2f} %")
+        cost = (f"solved in {r['wall_time_s']:.3g} s by an earlier run, reused" if r["reused"]
+                else f"{r['wall_time_s']:.3g} s")
+        lines.append(f"  {r['role']} beam (row {r['row']}): f1 {r['first_Hz'] / 1e3:.4g} kHz "
+                     f"+/- {100 * r['first_Hz_error_rel']:.2g} % ({versus}); {cost}"
+                     + (f", {r['dofs']} dofs" if r["dofs"] is not None else ""))
+    lines.append(f"lowest first resonance: {lowest['first_Hz'] / 1e3:.4g} kHz "
+                 f"({lowest['role']} beam)")
+    return report, lines

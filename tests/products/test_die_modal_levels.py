@@ -1,0 +1,138 @@
+"""`tactcad modal` on a silicon die's design answers at each of the die's levels, the
+closed form and fem3d, in one record of the same keys with each level's error estimate and
+cost; at fem3d it reads the solve `tactcad die --fem3d` makes (the same function, kept in
+the result store), so a second run solves nothing, and the Python API's `modes(model=...)`
+gives the command's numbers."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from conftest import DIE_EXAMPLE, run_cli
+
+ROLES = ["reference", "measuring"]
+#: The coarsest meshes of the die's fem3d (one element across and through each beam, two
+#: along it; the finer of the pair doubles each): the claims below are which solve each
+#: command reads and keeps, not its accuracy.
+COARSEST = (2, 1, 1)
+
+
+def _modal(folder, cache, *options: str) -> tuple[int, dict | str]:
+    r = run_cli("modal", "--design", DIE_EXAMPLE.name, "--cache", cache, *options,
+                cwd=folder)
+    assert "Traceback" not in r.stderr, r.stderr
+    return r.returncode, json.loads(r.stdout) if "--json" in options else r.stdout
+
+
+def _keys(record: dict) -> tuple:
+    return set(record), [set(row) for row in record["rows"]]
+
+
+@pytest.fixture
+def solved(monkeypatch) -> list[str]:
+    """The die's fem3d solve on its coarsest meshes; the roles it solved, in order."""
+    from tactcad.products.silicon_die.mechanics import die_fem3d
+
+    full, roles = die_fem3d.die_beam_fem3d, []
+
+    def coarsest(plan, beam, divisions=COARSEST, frame=True):
+        roles.append(beam.role)
+        return full(plan, beam, divisions, frame)
+
+    monkeypatch.setattr(die_fem3d, "die_beam_fem3d", coarsest)
+    return roles
+
+
+@pytest.fixture
+def stand_in(monkeypatch) -> list[str]:
+    """fem3d replaced by a stand-in with figures of its own (f1 a tenth below the closed
+    form's, its error and cost by role); the roles it was asked for, in order."""
+    from tactcad.products.silicon_die.mechanics import die_dynamics, die_fem3d
+
+    roles = []
+
+    def fake(plan, beam, divisions=die_fem3d.DIVISIONS, frame=True):
+        roles.append(beam.role)
+        f1 = 0.9 * die_dynamics.first_resonance_Hz(plan, beam)
+        at = ROLES.index(beam.role)
+        return die_fem3d.DieBeamFem(beam.role, 1.0, f1, 0.01, 0.003 + 0.001 * at, 1000 + at,
+                                    40.0 + at, frame)
+
+    monkeypatch.setattr(die_fem3d, "die_beam_fem3d", fake)
+    return roles
+
+
+def test_modal_at_fem3d_on_a_die_has_the_closed_forms_keys_its_error_and_cost(
+        die_folder, tmp_path, stand_in):
+    cache = tmp_path / "store"
+    code, closed = _modal(die_folder, cache, "--json")
+    assert code == 0 and closed["model"] == "closed-form" and stand_in == []
+    code, fem = _modal(die_folder, cache, "--model", "fem3d", "--json")
+    assert code == 0 and stand_in == ROLES, fem
+    assert _keys(fem) == _keys(closed)
+    assert fem["model"] == "fem3d" and not fem["reused"]
+    for at, (row, was) in enumerate(zip(fem["rows"], closed["rows"])):
+        assert row["role"] == was["role"] == ROLES[at] and row["model"] == "fem3d"
+        assert row["first_Hz"] == pytest.approx(0.9 * was["first_Hz"], rel=1e-12)
+        assert (row["first_Hz_error_rel"], row["wall_time_s"], row["dofs"]) == \
+            (0.003 + 0.001 * at, 40.0 + at, 1000 + at)
+        assert row["closed_form_error_rel"] == pytest.approx(1 / 0.9 - 1, rel=1e-9)
+    assert fem["lowest_first_Hz"] == min(r["first_Hz"] for r in fem["rows"])
+    assert fem["resonance_Hz"] == closed["resonance_Hz"]  # the closed form's, at both
+    # the second run reads both rows from the store: no solve, the first run's cost
+    code, again = _modal(die_folder, cache, "--model", "fem3d", "--json")
+    assert code == 0 and stand_in == ROLES and again["reused"]
+    assert [{**r, "reused": False} for r in again["rows"]] == fem["rows"]
+    # printed: one line per row at both levels, each with its error and cost
+    _, closed_text = _modal(die_folder, cache)
+    _, fem_text = _modal(die_folder, cache, "--model", "fem3d")
+    assert len(fem_text.splitlines()) == len(closed_text.splitlines()) == 4
+    assert "model fem3d" in fem_text and "+/- 0.3 %" in fem_text and "+/- 5 %" in closed_text
+    assert "solved in 40 s by an earlier run, reused" in fem_text
+
+
+def test_a_die_projects_modes_refuse_another_level_by_its_keyword():
+    import tactcad
+    from tactcad.errors import DesignError
+
+    die = tactcad.load(DIE_EXAMPLE)
+    with pytest.raises(DesignError) as err:
+        die.modes(model="fem2d")
+    assert err.value.field == "model" and "fem3d" in str(err.value), str(err.value)
+    assert die.modes()["model"] == "closed-form"
+
+
+@pytest.mark.slow  # four fem3d solves of a beam on its frame at the coarsest mesh, and a die
+@pytest.mark.xdist_group("die-fem3d")
+def test_modal_fem3d_reads_the_die_commands_fem3d_and_keeps_it(die_folder, tmp_path, solved):
+    """`tactcad die --fem3d` and `modal --model fem3d` on the same design give the same f1,
+    error and mesh for each row; a second `modal` and the API's `modes(model="fem3d")` on
+    the same store solve nothing and give the first run's numbers."""
+    import tactcad
+    from tactcad.store import Store, keeping_results
+
+    die = run_cli("die", "--design", DIE_EXAMPLE.name, "--fem3d", "--json", "--quiet",
+                  "--out", tmp_path / "die", cwd=die_folder)
+    assert die.returncode == 0, die.stdout[-2000:] + die.stderr
+    assert solved == ROLES  # the die command keeps no store: it solves
+    by_role = {r["role"]: r for r in json.loads(die.stdout)["fem3d"]}
+    cache = tmp_path / "store"
+    code, fem = _modal(die_folder, cache, "--model", "fem3d", "--json", "--quiet")
+    assert code == 0 and solved == ROLES * 2 and not fem["reused"]
+    assert [r["role"] for r in fem["rows"]] == ROLES
+    for row in fem["rows"]:
+        kept = by_role[row["role"]]
+        assert row["first_Hz"] == pytest.approx(kept["f1_Hz"], rel=1e-9)
+        assert row["first_Hz_error_rel"] == pytest.approx(kept["f1_error_rel"], rel=1e-6)
+        assert row["dofs"] == kept["dofs"]
+        assert row["closed_form_error_rel"] == pytest.approx(kept["f1_closed_form_error_rel"],
+                                                             rel=1e-6)
+    code, again = _modal(die_folder, cache, "--model", "fem3d", "--json", "--quiet")
+    assert code == 0 and solved == ROLES * 2 and again["reused"]
+    assert [r["first_Hz"] for r in again["rows"]] == [r["first_Hz"] for r in fem["rows"]]
+    with keeping_results(Store(cache)):
+        mine = tactcad.load(die_folder / DIE_EXAMPLE.name).modes(model="fem3d")
+    assert solved == ROLES * 2 and mine["reused"]
+    assert [r["first_Hz"] for r in mine["rows"]] == [r["first_Hz"] for r in fem["rows"]]
