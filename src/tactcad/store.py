@@ -195,10 +195,13 @@ class Store:
             return
         path = self._memo_path(key)
         try:
+            data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        except (pickle.PicklingError, TypeError, AttributeError):
+            return  # e.g. a warning a library issued that does not pickle: not kept
+        try:
             path.parent.mkdir(parents=True, exist_ok=True)
             # a store entry, not an output: an interrupt's line names no store file
-            write_bytes_atomic(path, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL),
-                               noted=False)
+            write_bytes_atomic(path, data, noted=False)
         except OSError:
             pass
 
@@ -392,7 +395,10 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
     changed input, estimator or library misses; never a file path. Outside
     a :func:`keeping_results` block, or when an input has no stable text (a
     function), this is ``compute()``. A new value is written atomically
-    (:meth:`Store.remember`).
+    (:meth:`Store.remember`), with the warnings its computation issued: a read of a kept
+    value issues them again, in order, through the caller's filters (as
+    :func:`kept_per_process` does), so a command warns alike on its first run and on a run
+    that reads every solve back.
 
     Args:
         kind: what is computed, e.g. ``"fem3d convergence"``.
@@ -413,7 +419,9 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
     except TypeError:
         return compute()
     in_memory = key in memory
-    found, value = (True, memory[key]) if in_memory else store.recall(key)
+    found, kept = (True, memory[key]) if in_memory else store.recall(key)
+    if found and not isinstance(kept, _KeptResult):  # written by no kept_result: not ours
+        found = False
     if found:
         _COUNTS.add(_COUNTS.reused, kind)
         if reused is not None:  # said as it is: a run without a store (--no-cache) reads none
@@ -423,10 +431,20 @@ def kept_result(kind: str, compute: Callable[[], T], *inputs: Any,
         raise NotKept(kind)
     else:
         _COUNTS.add(_COUNTS.computed, kind)
-        value = compute()
-        store.remember(key, value)
-    memory[key] = value
-    return value
+        kept = _KeptResult(*_issued_while(compute))
+        store.remember(key, kept)
+    memory[key] = kept
+    _say_again(kept.said)  # a kept result warns as its computation did, every time it is read
+    return kept.value
+
+
+@dataclass(frozen=True)
+class _KeptResult:
+    """What :func:`kept_result` keeps: the value and the warnings its computation issued
+    (a solve outside a fit's range says so on every read, not on the first run alone)."""
+
+    value: Any
+    said: tuple["_SaidWarning", ...]
 
 
 @dataclass(frozen=True)

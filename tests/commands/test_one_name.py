@@ -152,3 +152,13 @@ def test_the_api_gives_stiffness_its_grid_strain_at_the_closed_form(printed):
         assert api.model == s["model"] == "closed-form"
         assert api.grid_strain_per_N is not None
         assert api.grid_strain_per_N == pytest.approx(s["grid_strain_per_N"], rel=1e-12)
+
+
+def test_the_tolerance_studys_nominal_k_is_the_stiffness_commands_to_the_last_digit(printed):
+    # the Monte Carlo's nominal K came from the vectorised kernel: equal to rounding
+    # (30.074653416256602 against 30.074653416256595), not one figure
+    tolerance = _json("tolerance", "--design", printed["design"], "--samples", "200")
+    assert tolerance["elements"]
+    for rec in tolerance["elements"]:
+        assert rec["K_nominal_N_per_mm"] == \
+            printed["stiffness"][rec["element"]]["stiffness_N_per_mm"], rec["element"]

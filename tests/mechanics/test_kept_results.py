@@ -230,3 +230,48 @@ def test_a_reused_result_says_whether_a_store_was_read(tmp_path):
     # no store: the second call reuses the first's solve; a store: the third block reads it
     assert said == [REUSED_IN_RUN, REUSED_IN_RUN, REUSED_FROM_STORE, REUSED_IN_RUN]
     assert "store" not in REUSED_IN_RUN
+
+
+def test_a_kept_result_warns_as_its_computation_did_on_every_read(tmp_path):
+    # a solve outside a fit's range warned on the run that solved it and was silent on
+    # every run that read it back from the store
+    import warnings
+
+    from tactcad.store import kept_result
+
+    runs: list[str] = []
+
+    def warned() -> float:
+        runs.append("solved")
+        warnings.warn("outside the fit's range: web 0.02 mm", UserWarning)
+        return 1.5
+
+    for attempt in range(3):  # a first run, then two runs reading the store back
+        with keeping_results(Store(tmp_path / "store")), \
+                warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always")
+            assert kept_result("a warned solve", warned, "inputs") == 1.5
+            assert kept_result("a warned solve", warned, "inputs") == 1.5  # in memory
+        assert [str(w.message) for w in said] == ["outside the fit's range: web 0.02 mm"] * 2, \
+            attempt
+    assert runs == ["solved"]
+
+
+def test_a_kept_result_whose_warning_does_not_pickle_is_still_returned_and_said(tmp_path):
+    import warnings
+
+    from tactcad.store import kept_result
+
+    class Unpicklable(UserWarning):
+        pass  # a class local to a function does not pickle
+
+    def warned() -> int:
+        warnings.warn(Unpicklable("a library's own warning"))
+        return 7
+
+    for _ in range(2):
+        with keeping_results(Store(tmp_path / "store")), \
+                warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always")
+            assert kept_result("an unpicklable warning", warned, "inputs") == 7
+        assert [str(w.message) for w in said] == ["a library's own warning"]

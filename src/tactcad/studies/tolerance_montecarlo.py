@@ -299,7 +299,16 @@ def stiffness_samples(plan: Plan, s: Samples, correction: Correction) -> np.ndar
 
 
 def nominal_stiffness(plan: Plan, correction: Correction) -> np.ndarray:
-    """Nominal K (N/mm) of every element, array (m,), element order."""
+    """Nominal K (N/mm) of every element, array (m,), element order: with the shipped
+    correction, each distinct element's closed-form level K, the very number ``stiffness``,
+    ``verify`` and every other command print (the vectorised kernel agrees with it to
+    rounding, not to the last digit); with another correction, the kernel's."""
+    from tactcad.mechanics.ladder import estimate
+
+    if correction == load_correction():
+        k = {name: estimate("closed-form", g, plan.material).stiffness_N_per_mm
+             for name, g in plan.distinct_elements.items()}
+        return np.array([k[s.geometry.part_name] for s in plan.slots])
     geoms = [s.geometry for s in plan.slots]
     return corrected_stiffness([g.web_thickness_mm for g in geoms],
                                [g.notch_radius_mm for g in geoms],
