@@ -769,8 +769,8 @@ class Project:
                  "opening_deg": opening_deg, "slab_thickness_mm": slab_thickness_mm,
                  "lead_channel_mm": lead_channel_mm}
         checked = {k: v for k, v in _grasp_numbers(given).items() if v is not None}
-        for option, value, allowed in (("--coupling", coupling, COUPLINGS),
-                                       ("--profile", profile or DEFAULT_PROFILE, PROFILES)):
+        for option, value, allowed in (("coupling", coupling, COUPLINGS),
+                                       ("profile", profile or DEFAULT_PROFILE, PROFILES)):
             if value not in allowed:
                 raise DesignError(option, value, " or ".join(allowed))
         if model not in models():
@@ -858,7 +858,7 @@ class Project:
         from tactcad.store import keeping_results
 
         if model != "auto" and model not in models():
-            raise UnknownModelError(model)
+            raise UnknownModelError(model, also=("auto",))
         with keeping_results(_store(cache)):
             return self._verify(model, progress)
 

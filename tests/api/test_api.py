@@ -379,3 +379,18 @@ def test_an_unusable_cache_is_refused_naming_the_argument_before_any_work(tmp_pa
     finally:
         os.chdir(cwd)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]  # nothing written
+
+
+def test_the_apis_refusals_name_its_own_parameters_and_every_value_it_takes():
+    # verify(model="nope") listed the ladder's levels without its own default, auto; grasp
+    # named the command's --coupling and --profile for its keyword arguments
+    from tactcad.mechanics.ladder import models
+
+    project = tactcad.load(EXAMPLE_DESIGN)
+    with pytest.raises(ValueError) as refused:
+        project.verify(model="nope")
+    assert str(refused.value) == f"model = 'nope': allowed {', '.join(('auto', *models()))}"
+    for keyword in ("coupling", "profile"):
+        with pytest.raises(DesignError) as refused:
+            project.grasp(**{keyword: "nope"})
+        assert refused.value.field == keyword, refused.value

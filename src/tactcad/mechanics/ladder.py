@@ -52,8 +52,16 @@ class Level:
 
 
 class UnknownModelError(TactcadError, ValueError):
-    def __init__(self, model: str):
-        super().__init__(f"model = {model!r}: allowed {', '.join(models())}")
+    """A level name that is not a ladder level.
+
+    Args:
+        model: the name given.
+        also: other values the caller takes besides the levels (e.g. ``auto``), listed
+            first in the message.
+    """
+
+    def __init__(self, model: str, also: tuple[str, ...] = ()):
+        super().__init__(f"model = {model!r}: allowed {', '.join((*also, *models()))}")
 
 
 #: The stiffness ladder (:mod:`tactcad.mechanics.level_registry`).
