@@ -29,7 +29,15 @@ def test_the_manifest_carries_the_tissue_coupling_and_the_page_its_table():
     view = tissue_coupling_view(record)
     assert view["columns"][0] == "unit" and len(view["rows"]) == len(record["units"])
     first, item = view["rows"][0], record["eq3"]["items"][0]
-    assert first["unit"] == f"{item['unit'][0]}/{item['unit'][1]}"
+    # reference/measuring, as its title says and as the K_obj budget's table beside it names
+    # each unit (it printed measuring/reference: 1/2 for the budget's 2/1)
+    unit = record["units"][0]
+    assert unit["unit"] == item["unit"] == [unit["measuring_element"], unit["reference_element"]]
+    assert first["unit"] == unit["unit_label"] == \
+        f"{unit['reference_element']}/{unit['measuring_element']}"
+    assert {r["unit"] for r in view["rows"]} == \
+        {f"{u['reference_element']}/{u['measuring_element']}" for u in facts["kobj_budget"]["units"]}
+    assert "(reference/measuring element)" in view["title"]
     assert first["K_obj bias, eq. 3"] == f"{100 * item['bias_rel']:+.3g} %"
     assert first["eq. 3"] == item["verdict"].upper()
     assert "half-space" in view["title"] and " % K_obj resolution" in view["title"]

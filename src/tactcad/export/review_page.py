@@ -155,6 +155,8 @@ def tissue_coupling_view(record: dict | None) -> dict | None:
     its worst K_obj bias over the range by eq. 3 and by the coupled inversion (with the check
     level's error estimate on it), each with its verdict against the K_obj resolution (texts
     with their units); None without a unit."""
+    from tactcad.in_use.tissue_coupling import unit_label
+
     if not record or not record.get("units"):
         return None
     eq3 = {tuple(it["unit"]): it for it in record["eq3"]["items"]}
@@ -164,7 +166,7 @@ def tissue_coupling_view(record: dict | None) -> dict | None:
     rows = []
     for u in record["units"]:
         key = tuple(u["unit"])
-        rows.append({"unit": f"{key[0]}/{key[1]}", "coupling": f"{u['coupling']:.3g}",
+        rows.append({"unit": unit_label(key), "coupling": f"{u['coupling']:.3g}",
                      "K_obj bias, eq. 3": _signed_pct(eq3[key]["bias_rel"]),
                      "eq. 3": eq3[key]["verdict"].upper(),
                      "K_obj bias, coupled inversion": _signed_pct(coupled[key]["bias_rel"])

@@ -620,7 +620,12 @@ class UnitBias:
         return max(self.bias_corrected_rel, key=abs)
 
     def as_json(self) -> dict:
-        return {"unit": list(self.unit), "coupling": self.coupling,
+        """The unit as JSON: ``unit`` is (measuring, reference), as the coupling's solves take
+        it; ``reference_element`` and ``measuring_element`` name each, and ``unit_label`` is
+        the ``reference/measuring`` every other record prints (:func:`unit_label`)."""
+        return {"unit": list(self.unit), "reference_element": self.unit[1],
+                "measuring_element": self.unit[0], "unit_label": unit_label(self.unit),
+                "coupling": self.coupling,
                 "K_obj_N_per_mm": list(self.k_obj_N_per_mm), "R_eq2": list(self.ratio_eq2),
                 "R_coupled": list(self.ratio_coupled),
                 "bias_eq3_rel": [b if np.isfinite(b) else None for b in self.bias_eq3_rel],
