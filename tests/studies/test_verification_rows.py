@@ -353,3 +353,26 @@ def test_the_k_obj_ranges_verdict_holds_exactly_where_every_k_and_strain_error_k
     same_sign = all((x >= 0) == (m >= 0) for x in shifted)
     assert (record["verdict"] != "undecided") == same_sign or \
         abs(abs(m) - record["error_estimate_rel"]) < 1e-12, record
+
+
+def test_a_column_paired_units_pair_is_named_by_its_column_not_its_references_row():
+    # each column of the 10 mm comb pairs its row-1 reference with the element beside it
+    # in row 2: verify said "row 1: element 1 / 6" and every pair "row": 1
+    import tactcad
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.studies.verification import binding_text, verification_matrix
+
+    plan = tactcad.load(EXAMPLE.parents[1] / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml").plan
+    assert plan.pairing == "column"
+    record = next(r for r in verification_matrix(plan, "closed-form",
+                                                 envelope_mm=array_envelope_mm(plan))
+                  if r["requirement"] == "kr_over_km")
+    columns = [p["column"] for p in record["pairs"]]
+    assert columns == [plan.element(p["reference_element"]).column + 1 for p in record["pairs"]]
+    assert len(set(columns)) == len(columns) > 1
+    assert binding_text(record) == (f"column {record['column']}: element "
+                                    f"{record['reference_element']} / {record['measuring_element']}")
+    # a row-paired array keeps its rows
+    row_paired = next(r for r in verification_matrix(tactcad.load(EXAMPLE).plan, "closed-form")
+                      if r["requirement"] == "kr_over_km")
+    assert "column" not in row_paired and binding_text(row_paired).startswith("row ")

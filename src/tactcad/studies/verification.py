@@ -182,8 +182,11 @@ class RowPair:
     """A row's reference and the softest measuring element of that row at one level.
 
     Attributes:
-        row: 0-based row; reference, measuring: element numbers.
+        row: 0-based row of the reference; reference, measuring: element numbers.
         ratio: K_r / K_m of the pair; *_error_rel: the level's K error estimates.
+        column: with the plan's pairing "column" (each column's reference read by the
+            element beside it in the other row), the pair's 0-based column; None with
+            pairing "row".
     """
 
     row: int
@@ -192,6 +195,7 @@ class RowPair:
     ratio: float
     reference_error_rel: float
     measuring_error_rel: float
+    column: int | None = None
 
     @property
     def error_rel(self) -> float:
@@ -201,7 +205,8 @@ class RowPair:
     def as_json(self, target: float, threshold_rel: float = 0.0) -> dict:
         """The pair as an item of the ``kr_over_km`` record, judged on its own error
         (``threshold_rel``: the margin the requirement needs, :func:`verdict`)."""
-        return judged({"row": self.row + 1, "reference_element": self.reference,
+        where = {} if self.column is None else {"column": self.column + 1}
+        return judged({"row": self.row + 1, **where, "reference_element": self.reference,
                        "measuring_element": self.measuring, "kr_over_km": self.ratio,
                        "error_estimate_rel": self.error_rel,
                        "margin_rel": self.ratio / target - 1.0}, threshold_rel)
@@ -219,7 +224,8 @@ def row_pairs(plan: Plan, fig: Figures) -> list[RowPair]:
         soft = min(others, key=lambda s: (fig.k_of(s.number), s.number))
         out.append(RowPair(ref.row, ref.number, soft.number, fig.k_of(ref.number) / fig.k_of(soft.number),
                            fig.k_error[ref.geometry.part_name],
-                           fig.k_error[soft.geometry.part_name]))
+                           fig.k_error[soft.geometry.part_name],
+                           ref.column if plan.pairing == "column" else None))
     return out
 
 
@@ -1113,6 +1119,7 @@ def kr_over_km_record(pairs: Sequence[RowPair], req: Requirements, model: str) -
                    all(it["margin_rel"] >= threshold for it in items),
                    reference_element=worst["reference_element"],
                    measuring_element=worst["measuring_element"], row=worst["row"],
+                   **({"column": worst["column"]} if "column" in worst else {}),
                    allowed_margin_rel=threshold, pairs=items)
 
 
@@ -1297,11 +1304,13 @@ def margin_text(record: dict) -> str:
 
 def binding_text(record: dict) -> str:
     """What a record's figure comes from: the row's pair for K_r/K_m
-    (``row 1: element 2 / 1``), the binding limit and its element for the
-    full-scale force, the tightest axis for the footprint, the element with
-    the lowest first resonance; empty otherwise."""
+    (``row 1: element 2 / 1``; ``column 3: element 3 / 8`` where each column pairs its two
+    rows), the binding limit and its element for the full-scale force, the tightest axis
+    for the footprint, the element with the lowest first resonance; empty otherwise."""
     if "measuring_element" in record:
-        return (f"row {record['row']}: element {record['reference_element']} / "
+        where = f"column {record['column']}" if record.get("column") is not None else \
+            f"row {record['row']}"
+        return (f"{where}: element {record['reference_element']} / "
                 f"{record['measuring_element']}")
     if "binding_words" in record:
         element = record.get("binding_element")
