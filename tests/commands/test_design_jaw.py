@@ -771,3 +771,23 @@ def test_a_pasted_die_change_sets_only_the_targets_it_names():
     assert changed == Targets(5.0, (0.3, 3.0), 0.004)
     assert options == {"--kobj-range": "0.3 3", "--full-scale-force": "0.004"}
     assert pasted_targets("--jaw 10", asked) is None  # not a target: no die of it to plan
+
+
+def test_a_grade_whose_comb_carries_no_force_pastes_another_grade(tmp_path):
+    """design --jaw in 6061-T6 at K_r/K_m 20, K_obj 5 ... 50 N/mm: no comb of that grade
+    carries a force at any column count; the refusal keeps its force option and offers
+    another grade with the force its comb of the same columns carries, which designs."""
+    common = ["design", "--jaw", "10", "--construction", "monolithic-comb", "--kr-over-km",
+              "20", "--kobj-range", "5", "50", "--columns", "2", "--json"]
+    r = run_cli(*common, "--material", "6061-T6", "--full-scale-force", "2", "--out",
+                str(tmp_path / "x.toml"))
+    assert r.returncode == 2 and not list(tmp_path.iterdir())
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "--full-scale-force" and "none to paste" not in error["message"]
+    offered = [a["option"] for a in error["alternatives"]]
+    assert len(offered) == 1 and offered[0].startswith("--material ")
+    assert "6061-T6" not in offered[0] and f"nearest: {offered[0]}" in error["message"]
+    r = run_cli(*common, *offered[0].split(), "--out", str(tmp_path / "pasted.toml"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    written = tomllib.loads((tmp_path / "pasted.toml").read_text(encoding="utf-8"))
+    assert written["material"]["grade"] == offered[0].split()[1]

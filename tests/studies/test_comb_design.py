@@ -690,3 +690,67 @@ def test_a_pitch_too_short_for_the_measuring_arm_says_the_arm_it_needs():
     assert "leaves a measuring arm of 2.3 mm, short of the 2.5 mm it needs (0.5 mm longer " \
            "than the reference's 2 mm)" in text
     assert "not longer than" not in text
+
+
+def test_a_grade_whose_comb_carries_no_force_offers_another_grade_that_designs():
+    """6061-T6 at K_r/K_m 20 and K_obj 5 ... 50 N/mm: no web of any sheet reaches the
+    references' K at any column count, so nothing of that grade is there to paste; the
+    refusal names another grade of the library whose comb of the same columns carries a
+    force, which designs as pasted, and its option stays the one the design atlas names."""
+    from tactcad.studies.comb_design import comb_candidates, refusal_option
+
+    targets, room, soft = Targets(20.0, (5.0, 50.0), 2.0), jaw_room("10"), "6061-T6"
+    with pytest.raises(InverseDesignError) as caught:
+        comb_for_jaw(targets, room, 2, BASE, grade=soft, envelope_of=array_envelope_mm)
+    text = str(caught.value)
+    assert "none to paste" not in text and f"no comb of {soft} at any column count" in text
+    [offered] = caught.value.alternatives
+    pasted = re.fullmatch(r"--material (\S+) --full-scale-force (\S+)", offered["option"])
+    assert pasted and f"nearest: {offered['option']}" in text
+    grade, force = pasted.group(1), float(pasted.group(2))
+    assert grade != soft and force < targets.full_scale_force_N
+    searched, tried = comb_candidates(targets, room, 2, BASE, grade=soft,
+                                      envelope_of=array_envelope_mm)
+    assert caught.value.field == refusal_option(searched, tried, targets, room, 2, soft,
+                                                array_envelope_mm) == "--full-scale-force"
+    designed = comb_for_jaw(dataclasses.replace(targets, full_scale_force_N=force), room, 2,
+                            BASE, grade=grade, envelope_of=array_envelope_mm)
+    assert designed.plan.columns == 2 and designed.data["material"]["grade"] == grade
+
+
+def test_a_comb_no_grade_carries_says_so_with_nothing_to_paste():
+    """K_obj 20 ... 200 N/mm at K_r/K_m 20 in the 10 mm jaw: no grade of the library has a
+    comb that carries any force at any column count (each grade's own refusal has nothing
+    to paste), and the refusal says the other grades were searched as well."""
+    from tactcad.vocabulary.material_library import material_grades
+
+    targets, room = Targets(20.0, (20.0, 200.0), 5.0), jaw_room("10")
+    refusals = {}
+    for grade in material_grades():
+        with pytest.raises(InverseDesignError) as caught:
+            comb_for_jaw(targets, room, 3, BASE, grade=grade, envelope_of=array_envelope_mm)
+        refusals[grade] = caught.value
+    for grade, refused in refusals.items():
+        assert "none to paste" in str(refused) and not refused.alternatives
+        assert "nor in any other grade of the library" in str(refused)
+        assert refused.field == "--full-scale-force"
+
+
+@pytest.mark.parametrize("other, pasted", [
+    (("17-4PH-H900", None), "--material 17-4PH-H900"),
+    (("17-4PH-H900", 0.25), "--material 17-4PH-H900 --full-scale-force 0.25"),
+])
+def test_another_grade_that_counts_is_offered_alone_and_one_that_carries_with_its_force(
+        other, pasted):
+    """A grade whose comb counts at the asked force is pasted without a force; one that
+    carries a lighter force, with it; the option named stays the force's either way."""
+    from tactcad.studies.comb_design import CombCandidate, refusal
+
+    targets = Targets(20.0, (5.0, 50.0), 2.0)
+    tried = [CombCandidate(0.5, 1.0, None, None, ("no web reaches K",), -math.inf, None)]
+    refused = refusal(tried, targets, jaw_room("10"), 2, other_grade=other,
+                      grade_asked="6061-T6")
+    assert [a["option"] for a in refused.alternatives] == [pasted]
+    assert str(refused).endswith(f"nearest: {pasted}") and "none to paste" not in str(refused)
+    assert "no comb of 6061-T6 at any column count" in str(refused)
+    assert (refused.field, refused.value) == ("--full-scale-force", 2.0)

@@ -34,7 +34,9 @@ are grasped in that order in the jaw they are for, and the first that survives i
 validates, stands no taller than the jaw's room, its verification matrix at the closed form
 fails nothing and every stop engages between its rated and its yield-limited deflection. Of those, the softest pair that carries the force
 with :data:`FORCE_MARGIN_REL` to spare is chosen (:func:`chosen`). When none counts, the refusal names each sheet's binding limit and the largest
-full-scale force any sheet carries, as an option to paste. Units: mm, N, N/mm.
+full-scale force any sheet carries, as an option to paste; where no comb of the grade carries
+any force at any column count, the first other grade of the library whose comb does
+(:func:`nearest_grade`). Units: mm, N, N/mm.
 """
 
 from __future__ import annotations
@@ -974,7 +976,10 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
         InverseDesignError: no sheet gives a comb that counts; names each sheet's binding
             limit, the largest full-scale force any carries (``--full-scale-force``) and,
             where the pocket is too small for every sheet's comb, the pocket the smallest
-            needs and a jaw of ``other_rooms`` that holds it (``--jaw``).
+            needs and a jaw of ``other_rooms`` that holds it (``--jaw``); where no comb of
+            the grade carries any force at any column count, another grade of the library
+            whose comb of ``columns`` does (``--material``, :func:`nearest_grade`), its
+            option still ``--full-scale-force``.
     """
     with web_solves_kept():  # the refusal's searches meet the same webs again
         base, tried = comb_candidates(targets, room, columns, base, grade=grade,
@@ -1000,7 +1005,13 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             frontier = None if not rated or jaw[0] else largest_comb_force(
                 max(rated) * 0.99, lambda force: comb_counts(
                     base, force, columns, room, targets, grade, envelope_of, order, bounds))
-            refused = refusal(tried, targets, room, columns, jaw, fewer, frontier)
+            other = None
+            if not rated and fewer is None and not jaw[0]:
+                # nothing of this grade to paste: the first other grade whose comb of these
+                # columns counts or carries a force (the refusal's option stays the force's)
+                other = nearest_grade(base, columns, room, targets, grade, envelope_of)
+            refused = refusal(tried, targets, room, columns, jaw, fewer, frontier,
+                              other_grade=other, grade_asked=asked_grade(base, grade))
             refused.candidates = tuple(tried)  # what binds, read by the design atlas
             nearest = nearest_failure(tried)
             refused.limit = nearest.limits[0] if nearest and nearest.limits else ""
@@ -2265,16 +2276,93 @@ def nearest_columns(base: dict, columns: int, room: Any, targets: Targets, grade
         base, force, count, room, targets, grade, envelope_of, order, bounds))
 
 
+def asked_grade(base: Mapping[str, Any], grade: str | None) -> str:
+    """The grade a comb is searched in: ``grade``, else the base tables' own.
+
+    Args:
+        base: the tables searched. grade: the grade asked, or None.
+
+    Returns:
+        The grade's name (the base's material name where it states no grade).
+    """
+    material = base.get("material", {})
+    return str(grade or material.get("grade") or material.get("name"))
+
+
+def nearest_grade(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
+                  envelope_of: Callable | None) -> tuple[str | None, float | None]:
+    """The first other grade of the library (in the library's order) whose comb of
+    ``columns`` counts in ``room`` or carries some force, for a refusal with nothing else
+    to paste (no comb of ``grade`` carries any force at any column count): each grade's
+    candidates are judged at the asked force on every sheet at the K_m scales whose stops
+    can fit (:func:`stop_fitting_scales`), then, where none is rated, at a lighter force
+    (:func:`rated_at_a_lighter_force`); the search stops at the first grade that carries.
+
+    Args:
+        base: the tables as searched (their ``[material]`` is the grade asked when
+            ``grade`` is None). columns: the columns asked. room: the jaw's room (mm).
+        targets: K_r/K_m, the K_obj range (N/mm) and the full-scale force (N).
+        grade: the grade asked, or None for the base's. envelope_of: as
+            :func:`comb_for_jaw`.
+
+    Returns:
+        (grade, None) where that grade's comb counts at the asked force; (grade, force N)
+        where it carries a lighter one (the search's frontier, :func:`largest_comb_force`,
+        so that the force pasted designs); (None, None) when no other grade carries any
+        force.
+    """
+    from tactcad.vocabulary.material_library import material_grades
+
+    asked = asked_grade(base, grade)
+    scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
+    with candidates_weighed():
+        for other in material_grades():
+            if other == asked:
+                continue
+            judged = [candidate(base, sheet, scale, columns, room, targets, other,
+                                envelope_of, None) for sheet in sheets_of(base)
+                      for scale in scales]
+            if any(c.plan is not None and not c.failures for c in judged):
+                return other, None
+            if not any(c.rated_force_N for c in judged):
+                judged = rated_at_a_lighter_force(base, columns, room, targets, other,
+                                                  envelope_of)
+            rated = sorted(((c.rated_force_N, c.sheet_mm, c.km_scale) for c in judged
+                            if c.rated_force_N), reverse=True)
+            if rated:
+                order, bounds = [(sheet, scale) for _, sheet, scale in rated], bounds_of(judged)
+                return other, largest_comb_force(rated[0][0], lambda force: comb_counts(
+                    base, force, columns, room, targets, other, envelope_of, order, bounds))
+    return None, None
+
+
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             columns: int, jaw: tuple[str, list[dict]] = ("", []),
             fewer_columns: tuple[int, float | None] | None = None,
-            frontier_N: float | None = None) -> InverseDesignError:
+            frontier_N: float | None = None,
+            other_grade: tuple[str | None, float | None] | None = None,
+            grade_asked: str = "") -> InverseDesignError:
     """Why no sheet counts, the largest force any carries (a pasteable option:
     ``frontier_N``, :func:`largest_comb_force`, else the candidates' best rating less 1 %)
     or, when the pocket binds every sheet, the nearest jaw (``jaw``, :func:`nearest_jaw`'s
     line and alternatives: no force helps then); when the grid binds before any force, the
     nearest column count that counts or carries a force (``fewer_columns``, fewer first,
-    then more: :func:`nearest_columns`)."""
+    then more: :func:`nearest_columns`); when no column count carries one either, another
+    grade whose comb of ``columns`` counts or carries a force (``other_grade``,
+    :func:`nearest_grade`: (grade, None) where it counts, (grade, force N) where it carries
+    that force, (None, None) where no other grade carries any; None: not searched), offered
+    as ``--material`` while the option named stays ``--full-scale-force`` (the design
+    atlas's :func:`refusal_option` names the same).
+
+    Args:
+        tried: the candidates, none counting. targets: the targets (N/mm, N). room: the
+            jaw's room (mm). columns: the columns asked. jaw, fewer_columns, frontier_N,
+            other_grade: as above. grade_asked: the grade searched (named beside
+            ``other_grade``).
+
+    Returns:
+        The :class:`InverseDesignError`, with its pasteable ``alternatives``.
+    """
     jaw_line, jaw_alternatives = jaw
     lines = []
     for sheet in sorted({c.sheet_mm for c in tried}):  # each sheet's nearest: most margin
@@ -2306,9 +2394,21 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             nearest += f" --full-scale-force {force:.3g}"
             words = (f"the {which} columns whose comb carries a force in this jaw, and the "
                      "largest force it carries")
+    if not nearest and other_grade is not None and other_grade[0] is not None:
+        other, force = other_grade
+        text += (f"\n  no comb of {grade_asked or 'this grade'} at any column count on these "
+                 "sheets carries any force in this jaw (each sheet's binding limit above)")
+        nearest = f"--material {other}"
+        words = f"another grade of the library whose comb of 2 x {columns} counts in this jaw"
+        if force is not None:
+            nearest += f" --full-scale-force {force:.3g}"
+            words = (f"another grade of the library whose comb of 2 x {columns} carries a "
+                     "force in this jaw, and the largest force it carries")
     if not nearest:  # say why there is nothing to paste
         text += ("\n  none to paste: no comb of any column count on these sheets "
-                 "carries any force in this jaw (each sheet's binding limit above)")
+                 "carries any force in this jaw"
+                 + (", nor in any other grade of the library" if other_grade is not None
+                    else "") + " (each sheet's binding limit above)")
     return InverseDesignError(text + (f"\n  nearest: {nearest}" if nearest else ""),
                               option, value, nearest or "a design the jaw holds",
                               alternatives=[{"option": nearest, "words": words}] if nearest
