@@ -630,7 +630,8 @@ class Project:
 
     @keyword_errors
     def budget(self, model: str = "closed-form", force_N: float | None = None,
-               delta_T_K: float | None = None) -> dict:
+               delta_T_K: float | None = None, calibration: "str | PathLike | None" = None
+               ) -> dict:
         """The K_obj error budget of every sensing unit and of the array, as
         ``tactcad budget --json`` gives it (relative errors, 1 sigma; N, K).
 
@@ -638,12 +639,18 @@ class Project:
             model: ladder level of K and the gauge strain. force_N: force on the reference
                 at the reading (N; None: the design's full-scale force). delta_T_K:
                 temperature step between tare and reading (K; None: the budget's default).
+            calibration: a calibration data file (CSV, LVM or TDMS), as ``tactcad budget
+                --calibration``: read and audited as ``tactcad calibrate --data`` does, its
+                fitted standard errors taken, each flag of its audit in ``warnings``; None:
+                the expected errors of the calibration ``calibrate`` drives.
 
         Raises:
             DesignError: ``force_N`` or ``delta_T_K`` out of range.
+            CalibrationError: the calibration file cannot be read or fitted, or names an
+                element the design does not have (named ``calibration``).
         """
         from tactcad.errors import DesignError
-        from tactcad.studies.project_reports import budget_record
+        from tactcad.studies.project_reports import budget_calibration, budget_record
 
         # the options' own ranges (``budget --force-N``, ``--delta-T-K``), named as keywords
         for name, value, (lo, hi), lo_open in (("--force-N", force_N, (0.0, 1000.0), True),
@@ -654,7 +661,9 @@ class Project:
                     or not lo <= value <= hi or (lo_open and value <= lo):
                 raise DesignError(name, value, f"{lo:g} {'<' if lo_open else '<='} value "
                                                f"<= {hi:g} ({'N' if lo_open else 'K'})")
-        return budget_record(self.plan, model, force_N, delta_T_K)[0]
+        read = (budget_calibration(self.plan, calibration, model, "calibration")
+                if calibration is not None else None)
+        return budget_record(self.plan, model, force_N, delta_T_K, calibration=read)[0]
 
     @keyword_errors
     def strength(self, model: str = "closed-form") -> dict:

@@ -171,6 +171,12 @@ class PastRatingWarning(UserWarning):
     sample's K_obj outside the design's required K_obj range."""
 
 
+class CalibrationAuditWarning(UserWarning):
+    """A calibration file a budget reads has what ``tactcad calibrate --data`` flags in it:
+    an element of the design without readings, a K far off the design, a signal per newton
+    off the other elements' gain (named in the message)."""
+
+
 class CoarseReadingWarning(UserWarning):
     """A written design reads K_obj only to within more than its own size (a K_obj
     resolution over 100 %): it is written, but what it reads does not tell a tissue from one

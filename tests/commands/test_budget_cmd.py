@@ -241,5 +241,30 @@ def test_a_combs_crosstalk_term_has_a_neutral_key_and_the_old_one_deprecated():
                     sum(abs(a[i]) for a in after), rel=1e-5)
         assert "stack_crosstalk" not in u["dominant"]
     text = run_cli("budget", "--design", COMB, "--points", "3").stdout
-    assert "| crosstalk |" in text and "stack crosstalk" not in text
+    assert "| crosstalk (comb-beam) |" in text and "stack crosstalk" not in text
     assert "  crosstalk_basis: " in text and "stack_crosstalk" not in text
+
+
+@pytest.mark.parametrize("design, level, other", [(COMB, "comb-beam", "stack"),
+                                                  (TI, "stack-timoshenko", "comb")])
+def test_the_crosstalk_term_is_named_for_the_constructions_own_level(design, level, other):
+    """A comb's crosstalk row, its ``sources`` words and a dominant crosstalk read "crosstalk
+    (comb-beam)", as ``tactcad crosstalk`` names the model; the stacked array's its own."""
+    from tactcad.commands.budget import render
+    from tactcad.in_use.kobj_budget import SOURCES
+
+    d = json.loads(run_cli("budget", "--design", design, "--points", "2", "--json").stdout)
+    words = {s["key"]: s["words"] for s in d["sources"]}
+    assert words["crosstalk"] == f"crosstalk ({level})"
+    assert not any(other in w for w in words.values())
+    assert {k: w for k, w in words.items() if k != "crosstalk"} == {
+        s.key: s.words for s in SOURCES if s.key != "crosstalk"}
+    text = run_cli("budget", "--design", design, "--points", "2").stdout
+    assert f"| crosstalk ({level}) |" in text and "| crosstalk |" not in text
+    # a dominant crosstalk term is named so in the text's dominant rows
+    from tactcad.api import load
+    from tactcad.studies.project_reports import budget_record
+
+    _, budget = budget_record(load(design).plan, points=2)
+    budget.units[0]["dominant"][0] = "crosstalk"
+    assert f"| dominant | crosstalk ({level}) |" in render(budget)

@@ -27,7 +27,10 @@ def test_the_manifest_carries_the_budget_and_the_page_shows_its_table():
     assert budget["force_N"] == facts["requirements"]["values"]["full_scale_force_N"]
     view = kobj_budget_view(budget)
     assert view["columns"][:2] == ["K_obj", "unit"]
-    assert view["columns"][2:-3] == [s.words for s in SOURCES]
+    # the record's words: the crosstalk term named for the stacked array's own level
+    assert view["columns"][2:-3] == [s["words"] for s in budget["sources"]]
+    assert view["columns"][2:-3] == [s.words if s.key != "crosstalk"
+                                     else "crosstalk (stack-timoshenko)" for s in SOURCES]
     assert len(view["rows"]) == len(budget["K_obj_N_per_mm"])
     first = view["rows"][0]
     assert first["K_obj"].endswith(" N/mm") and first["RSS"].endswith(" %")

@@ -48,7 +48,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="log-spaced K_obj points over the range (default %(default)s)")
     p.add_argument("--calibration", metavar="FILE", default=None,
                    help="measured calibration readings (as tactcad calibrate --data: CSV, LVM "
-                        "or TDMS): their fitted standard errors of K and K_v; default the "
+                        "or TDMS; read and audited as calibrate reads and audits it, each "
+                        "flag a warning): their fitted standard errors of K and K_v, an "
+                        "element without readings taking the default's; default the "
                         "expected errors of the static calibration tactcad calibrate drives (its "
                         "steps, on the rigs' force gauge, else the catalogue gauge that leaves "
                         "the least error)")
@@ -59,21 +61,24 @@ def register(sub: argparse._SubParsersAction) -> None:
     keep_option_defaults(p)  # a die's design: its view refuses an array's options
 
 
-def calibrations_from_file(path: str, plan) -> dict:
-    """Element number -> fitted :class:`~tactcad.mechanics.calibration.Calibration` of the
-    readings in ``path``, read as ``tactcad calibrate --data`` reads it (the same reader, the
-    same refusals, the same force gauge where the file states none: the rigs').
+def calibrations_from_file(path: str, plan, model: str = "closed-form"):
+    """The calibration file ``path`` as the budget reads it: read and audited as ``tactcad
+    calibrate --data`` reads and audits it (the same reader, the same refusals, the same
+    force gauge where the file states none: the rigs'; the same flags, each a warning of the
+    budget; :func:`tactcad.studies.project_reports.budget_calibration`).
+
+    Returns:
+        :class:`tactcad.studies.project_reports.BudgetCalibration`: the fits (element
+        number -> :class:`~tactcad.mechanics.calibration.Calibration`), the audit, the
+        warnings.
 
     Raises:
         CalibrationError: the file cannot be read or fitted, or names an element number the
             design does not have (:func:`tactcad.mechanics.calibration_file.read_calibration`).
     """
-    from tactcad.mechanics.calibration_file import read_calibration
-    from tactcad.studies.verification import calibration_gauge
+    from tactcad.studies.project_reports import budget_calibration
 
-    k_sensor = float(calibration_gauge(plan).gauge.stiffness_N_per_mm)
-    return read_calibration(path, "--calibration", default_k_sensor=k_sensor,
-                            element_numbers=[s.number for s in plan.slots]).fits
+    return budget_calibration(plan, path, model, "--calibration")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -86,13 +91,16 @@ def run(args: argparse.Namespace) -> int:
 
     plan = plan_from_args(args)
     progress = progress_from_args(args)
-    cal = calibrations_from_file(args.calibration, plan) if args.calibration else None
+    cal = (calibrations_from_file(args.calibration, plan, args.model) if args.calibration
+           else None)
     req = requirements_of(plan)
     force = req.full_scale_force_N if args.force_N is None else args.force_N
     progress(f"budget of {plan.name} at {force:g} N, {args.delta_T_K:g} K ({args.model})")
     record, budget = budget_record(plan, args.model, args.force_N, args.delta_T_K, args.points,
-                                   cal)
+                                   calibration=cal)
     text = render(budget)
+    for line in record.get("warnings", []):  # the calibration file's flags, in the text too
+        text = f"{text}\n  warning: {line}"
     past = past_rating_words(force, req.full_scale_force_N, overload_forces(plan, budget))
     if past:  # a budget at a force the design is not rated for: said, in the text and --json
         warnings.warn(PastRatingWarning(past))
@@ -186,10 +194,10 @@ def render(budget) -> str:
             cells = (["not modelled"] * len(budget.k_obj) if "not_modelled" in v else
                      [_pct(a) if a == b else f"{_pct(a)} ({_pct(b)})"
                       for a, b in zip(v["after_rel"], v["before_rel"])])
-            lines.append(f"| {s.words} | " + " | ".join(cells) + " |")
+            lines.append(f"| {budget.source_words(s)} | " + " | ".join(cells) + " |")
         lines.append("| RSS | " + " | ".join(_pct(x) for x in u["rss_rel"]) + " |")
         lines.append("| worst case | " + " | ".join(_pct(x) for x in u["worst_case_rel"]) + " |")
-        lines.append("| dominant | " + " | ".join(d.replace("_", " ") for d in u["dominant"])
+        lines.append("| dominant | " + " | ".join(budget.dominant_words(d) for d in u["dominant"])
                      + " |")
         lines += readout_alone_lines(u, budget)
     lines += ["", *render_array(budget)]
@@ -245,7 +253,8 @@ def render_array(budget) -> list[str]:
             "| unit | " + " | ".join(a["unit"]) + " |",
             "| RSS | " + " | ".join(_pct(x) for x in a["rss_rel"]) + " |",
             "| worst case | " + " | ".join(_pct(x) for x in a["worst_case_rel"]) + " |",
-            "| dominant | " + " | ".join(d.replace("_", " ") for d in a["dominant"]) + " |",
+            "| dominant | " + " | ".join(budget.dominant_words(d) for d in a["dominant"])
+            + " |",
             *calibration_need_lines(budget)]
 
 

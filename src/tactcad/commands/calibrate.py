@@ -214,9 +214,10 @@ def run(args: argparse.Namespace) -> int:
             from tactcad.mechanics.calibration_file import read_calibration
             from tactcad.mechanics.measured_io import parse_mapping
 
-            data, fits, info = read_calibration(args.data, "--data", args.encoding,
-                                                parse_mapping(args.map), k_sensor,
-                                                [slot.number for slot in plan.slots])
+            read = read_calibration(args.data, "--data", args.encoding,
+                                    parse_mapping(args.map), k_sensor,
+                                    [slot.number for slot in plan.slots])
+            data, fits, info = read
             k_sensor = next(iter(data.values())).k_sensor_N_per_mm
             if k_sensor != float(gauge.stiffness_N_per_mm):  # the file states its own gauge
                 report["force_gauge"] = {"model": None, "stiffness_N_per_mm": k_sensor,
@@ -246,12 +247,13 @@ def run(args: argparse.Namespace) -> int:
         present = {slot.number for slot in plan.slots}
         calibrations = [c for c in ca.from_table1() if c.element in present]
         report["skipped_elements"] = sorted({c.element for c in ca.from_table1()} - present)
-    report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance, k_sensor,
-                               paper_criteria=cites_paper(plan.raw))
-    if args.data:  # a reading file that leaves out an element of the design says so
-        unread, flags = ca.unread_elements(plan, calibrations, args.data)
-        report["elements_without_readings"] = unread
-        report["audit"]["flags"] += flags
+    if args.data:  # the file's audit, as budget --calibration gives it: one function
+        report["audit"] = ca.audit_file(plan, read, args.data, args.model, args.gain_tolerance)
+        # a reading file that leaves out an element of the design says so
+        report["elements_without_readings"] = report["audit"].pop("elements_without_readings")
+    else:
+        report["audit"] = ca.audit(plan, calibrations, args.model, args.gain_tolerance,
+                                   k_sensor, paper_criteria=cites_paper(plan.raw))
     if args.plot:
         from tactcad.paper.figures import plot_calibration
 

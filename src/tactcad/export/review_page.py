@@ -130,15 +130,21 @@ def kobj_budget_view(budget: dict | None) -> dict | None:
 
     units = {f"{u['reference_element']}/{u['measuring_element']}": u for u in budget["units"]}
     a = budget["array"]
-    columns = ["K_obj", "unit", *(s.words for s in SOURCES), "RSS", "worst case", "dominant"]
+    # the record's words: its crosstalk term named for the construction's own level
+    said = {s.get("key"): s.get("words") for s in budget.get("sources", [])}
+    words = {s.key: said.get(s.key) or s.words for s in SOURCES}
+    columns = ["K_obj", "unit", *(words[s.key] for s in SOURCES), "RSS", "worst case",
+               "dominant"]
     rows = []
     for i, k in enumerate(budget["K_obj_N_per_mm"]):
         u = units[a["unit"][i]]
+        dominant = a["dominant"][i]
         rows.append({"K_obj": f"{k:.3g} N/mm", "unit": a["unit"][i],
-                     **{s.words: "not modelled" if "not_modelled" in u["sources"][s.key]
+                     **{words[s.key]: "not modelled" if "not_modelled" in u["sources"][s.key]
                         else pct(u["sources"][s.key]["after_rel"][i]) for s in SOURCES},
                      "RSS": pct(a["rss_rel"][i]), "worst case": pct(a["worst_case_rel"][i]),
-                     "dominant": a["dominant"][i].replace("_", " ")})
+                     "dominant": (words[dominant] if dominant == "crosstalk"
+                                  else dominant.replace("_", " "))})
     title = (f"{budget['model']}, {budget['force_N']:.4g} N on the reference, "
              f"{budget['delta_T_K']:g} K step; relative K_obj error after correction, each "
              f"K_obj read by its best unit (reference/measuring element); tactcad budget "

@@ -1215,6 +1215,25 @@ SOURCES = (
 )
 SOURCE_KEYS = tuple(s.key for s in SOURCES)
 
+
+def source_words(source: Source, crosstalk_level: str = "") -> str:
+    """A source's words as a budget prints them: the crosstalk term's name its
+    construction's crosstalk level, "crosstalk (comb-beam)" for a monolithic comb and
+    "crosstalk (stack-timoshenko)" for the stacked array, never another construction's;
+    every other source's are its own.
+
+    Args:
+        source: one of :data:`SOURCES`.
+        crosstalk_level: the level the budget's crosstalk term read ("" where none
+            describes the construction).
+
+    Returns:
+        The words.
+    """
+    if source.key == "crosstalk" and crosstalk_level:
+        return f"{source.words} ({crosstalk_level})"
+    return source.words
+
 #: JSON keys of the budget's record that were renamed, old -> new. The old key is still
 #: written beside the new one, with the same value (a source's in each unit's ``sources``,
 #: a note's in ``notes``), and the record lists this mapping as ``deprecated_keys``; the
@@ -1317,6 +1336,20 @@ class KobjBudget:
     units: list[dict]
     notes: dict
     tip_height: dict = field(default_factory=dict)
+    #: the crosstalk level the crosstalk term read (``stack-timoshenko``, ``comb-beam`` ...;
+    #: "" where none describes the construction): the term's words name it
+    crosstalk_level: str = ""
+
+    def source_words(self, source: "Source") -> str:
+        """The source's words in this budget (:func:`source_words`)."""
+        return source_words(source, self.crosstalk_level)
+
+    def dominant_words(self, key: str) -> str:
+        """A ``dominant`` key in words: the key's own words ("tissue coupling"), the
+        crosstalk term's with its level ("crosstalk (comb-beam)")."""
+        if key == "crosstalk" and self.crosstalk_level:
+            return f"crosstalk ({self.crosstalk_level})"
+        return key.replace("_", " ")
 
     @property
     def array(self) -> dict:
@@ -1353,8 +1386,8 @@ class KobjBudget:
                 "delta_T_K": self.delta_T_K,
                 "kobj_range_N_per_mm": list(self.kobj_range_N_per_mm),
                 "K_obj_N_per_mm": list(self.k_obj),
-                "sources": [{"key": s.key, "words": s.words, "correction": s.correction}
-                            for s in SOURCES],
+                "sources": [{"key": s.key, "words": self.source_words(s),
+                             "correction": s.correction} for s in SOURCES],
                 "units": units, "array": self.array,
                 "notes": with_deprecated_keys(self.notes),
                 "tip_height": self.tip_height, "deprecated_keys": dict(DEPRECATED_KEYS)}
@@ -1433,6 +1466,13 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
     need = (calibration_resolution_need(ctx, pairs, units, k_obj) if not calibrations
             else None)
     term = ctx.once("crosstalk", lambda: _crosstalk(ctx))
+    expected = (f"expected standard errors of a static calibration on the {gauge.model} "
+                f"force gauge (range {gauge.range_N:g} N, read to "
+                f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm; "
+                f"{gauge_source}, as tactcad calibrate): {calibration_steps_words(ctx)}, "
+                f"{CALIBRATION_REPEATS} runs, the force read to the gauge's resolution and the "
+                f"signal to the read-out chain's noise of one averaged reading, 1 sigma")
+    unfitted = [s.number for s in plan.slots if s.number not in ctx.calibrations]
     notes = {
         "crosstalk_N_per_N": (float(np.max(np.abs(term.per_newton)))
                               if term.per_newton.size else 0.0),
@@ -1447,13 +1487,8 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
         "gauge_model": "the grid strain's own error estimate at the level (the width "
                        "correction's fit residual at closed form and beam; a calibration "
                        "measures K_v, so none remains after it)",
-        "calibration": "fitted standard errors of the calibration file" if calibrations
-        else (f"expected standard errors of a static calibration on the {gauge.model} "
-              f"force gauge (range {gauge.range_N:g} N, read to "
-              f"{gauge.resolution_N:g} N, {gauge.stiffness_N_per_mm:g} N/mm; "
-              f"{gauge_source}, as tactcad calibrate): {calibration_steps_words(ctx)}, "
-              f"{CALIBRATION_REPEATS} runs, the force read to the gauge's resolution and the "
-              f"signal to the read-out chain's noise of one averaged reading, 1 sigma"),
+        "calibration": calibration_note(ctx, pairs, expected),
+        **({"calibration_unfitted_elements": unfitted} if calibrations else {}),
         "calibration_force_gauge": gauge.model,
         "calibration_force_gauge_source": gauge_source,
         **({"calibration_force_share_rel": listed([need.force_share_rel])[0],
@@ -1483,7 +1518,29 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                            f"slope dR/dlnK_obj",
         "tip_coplanarity": tip["basis"]}
     return KobjBudget(plan.name, model, float(force_N), float(delta_T_K), (lo, hi),
-                      tuple(float(v) for v in k_obj), units, notes, tip)
+                      tuple(float(v) for v in k_obj), units, notes, tip, term.level)
+
+
+def calibration_note(ctx: Context, pairs: list[Unit], expected: str) -> str:
+    """The budget's note on its calibration term: ``expected`` (the standard errors a static
+    calibration is expected to leave) without a calibration file; with one, its fitted
+    standard errors, and for each element it has no readings of (``calibrate`` flags it
+    "not calibrated") the units whose term falls back to ``expected``, as without a file."""
+    if not ctx.calibrations:
+        return expected
+    fitted = "fitted standard errors of the calibration file"
+    unfitted = [s.number for s in ctx.plan.slots if s.number not in ctx.calibrations]
+    if not unfitted:
+        return fitted
+    units = [f"{u.reference}/{u.measuring}" for u in pairs
+             if u.reference in unfitted or u.measuring in unfitted]
+    which = ", ".join(map(str, unfitted))
+    return (f"{fitted} where it has readings; element{'s' if len(unfitted) > 1 else ''} "
+            f"{which} without readings in it (not calibrated, as tactcad calibrate flags) "
+            f"take{'' if len(unfitted) > 1 else 's'} what the budget uses without a "
+            f"calibration file, so the calibration term of unit"
+            f"{'s' if len(units) != 1 else ''} {', '.join(units) or 'none'} is not fitted: "
+            f"{expected}")
 
 
 def tip_height_record(ctx: Context, pairs: list[Unit], units: list[dict],

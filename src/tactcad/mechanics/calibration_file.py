@@ -24,7 +24,7 @@ import numpy as np
 
 from tactcad.mechanics.calibration import (K_SENSOR_N_PER_MM, Calibration, CalibrationData,
                                            CalibrationError, fit_calibration)
-from tactcad.mechanics.measured_io import ReadInfo, TooFewReadings, read_measured
+from tactcad.mechanics.measured_io import ReadInfo, TooFewReadings, WorkbookError, read_measured
 
 #: A reading's element deflection below -this share of the element's largest Z travel is
 #: negative beyond what the force gauge's noise explains at Z = 0.
@@ -97,6 +97,8 @@ def read_calibration(path, option: str = "--data", encoding: str | None = None,
 
 def _of_option(exc: CalibrationError, option: str, path: str) -> CalibrationError:
     """``exc`` with the option and the file as its field and value where it names no column."""
+    if isinstance(exc, WorkbookError):  # the file as a whole: the option heads the message
+        return CalibrationError(f"{option} = {exc}", option, path, exc.allowed)
     if exc.field is not None:
         return exc
     message = str(exc)

@@ -171,6 +171,8 @@ def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] 
         raw = p.read_bytes()
     except OSError as exc:
         raise CalibrationError(f"{where}: cannot be read ({exc.strerror or exc})") from None
+    if fmt != "tdms":
+        _refuse_workbook(raw, where)
     fmt = fmt or _format_of(p, raw)
     mapping = dict(mapping or {})
     if fmt == "tdms":
@@ -180,6 +182,63 @@ def read_measured(path, encoding: str | None = None, mapping: Mapping[str, str] 
         return _read_lvm(text, used, where, mapping, default_k_sensor)
     _check_reads_as(raw, text, used, where, mapping)
     return parse_csv_text(text, where, mapping, used, default_k_sensor)
+
+
+#: First bytes of a spreadsheet workbook: a zip archive (xlsx, ods) or an OLE2 compound file
+#: (xls).
+ZIP_MAGIC = (b"PK\x03\x04", b"PK\x05\x06", b"PK\x07\x08")
+OLE_MAGIC = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"
+#: What a refusal of a workbook allows: the formats the reader takes.
+READ_FORMATS = ("a CSV file (comma, semicolon or tab separated, as a spreadsheet saves it), "
+                "a LabVIEW .lvm or a .tdms file")
+
+
+class WorkbookError(CalibrationError):
+    """A data file that is a spreadsheet workbook (xlsx, xls, ods), not text: its message
+    starts with the file, so the option that named it can head it."""
+
+
+def workbook_kind(raw: bytes) -> str | None:
+    """The kind of spreadsheet workbook ``raw`` (a file's first bytes or all of it) is, in
+    words, by its magic bytes: an Excel .xlsx or OpenDocument .ods workbook (a zip archive),
+    an Excel 97-2003 .xls workbook (an OLE2 compound file); None for any other file.
+
+    Args:
+        raw: the file's bytes.
+
+    Returns:
+        The kind in words, or None.
+    """
+    if raw.startswith(OLE_MAGIC):
+        return "an Excel 97-2003 .xls workbook (an OLE2 compound file)"
+    if not raw.startswith(ZIP_MAGIC):
+        return None
+    import io
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(io.BytesIO(raw)) as z:
+            names = z.namelist()
+            mimetype = (z.read("mimetype")[:100].decode("ascii", "replace")
+                        if "mimetype" in names else "")
+    except (zipfile.BadZipFile, OSError, ValueError, RuntimeError):
+        names, mimetype = [], ""
+    if any(n.startswith("xl/") for n in names):
+        return "an Excel .xlsx workbook (a zip archive)"
+    if "opendocument.spreadsheet" in mimetype:
+        return "an OpenDocument .ods spreadsheet (a zip archive)"
+    return "a zip archive (as an .xlsx or .ods spreadsheet workbook is), not text"
+
+
+def _refuse_workbook(raw: bytes, where: str, allowed: str = READ_FORMATS) -> None:
+    """Refuse a spreadsheet workbook (:func:`workbook_kind`) by name, before it is read as
+    text (its first binary byte would be refused as a wrong encoding); ``allowed``: the
+    formats the reader takes, in words."""
+    kind = workbook_kind(raw)
+    if kind is not None:
+        raise WorkbookError(f"{where}: a spreadsheet workbook, {kind}: allowed {allowed}; "
+                            "save the sheet as CSV (File > Save As > CSV UTF-8) and give that "
+                            "file", None, None, allowed)
 
 
 def _format_of(p: Path, raw: bytes) -> str:
@@ -739,6 +798,7 @@ def read_flat_readings(path, encoding: str | None = None
         raw = p.read_bytes()
     except OSError as exc:
         raise CalibrationError(f"{where}: cannot be read ({exc.strerror or exc})") from None
+    _refuse_workbook(raw, where, f"a CSV file of {','.join(FLAT_COLUMNS)}")
     text, used = decode(raw, encoding, where)
     lines = [(n, line) for n, line in enumerate(text.splitlines(), start=1)
              if line.strip().strip(",;\t") and not line.strip().startswith("#")]

@@ -241,6 +241,43 @@ def unread_elements(plan, calibrations: list[ElementCalibration], source: str
                     for e in unread]
 
 
+def audit_file(plan, read, source: str, model: str = "closed-form",
+               gain_tolerance: float = DEFAULT_GAIN_TOLERANCE) -> dict:
+    """The audit of a calibration data file against the design, as ``tactcad calibrate
+    --data`` and ``tactcad budget --calibration`` both give it: :func:`audit` of every
+    fitted element, at the file's force gauge (its ``k_sensor_N_per_mm``, else the one it
+    was read with), with the paper's linearity limit only for a design that cites the
+    paper; and a flag for each element of the design the file has no readings of
+    (:func:`unread_elements`).
+
+    Args:
+        plan: the design.
+        read: the file, read and fitted
+            (:class:`tactcad.mechanics.calibration_file.CalibrationFile`).
+        source: the file as the user named it, for the flags' words.
+        model: ladder level for the as-built web and the gauge strain.
+        gain_tolerance: relative disagreement of signal and force that is flagged, > 0.
+
+    Returns:
+        :func:`audit`'s dict (K in N/mm, web in mm, signal per newton in V/N) with the flags of
+        the elements without readings added to ``flags`` and their numbers, ascending, as
+        ``elements_without_readings``.
+
+    Raises:
+        CalibrationError: ``gain_tolerance`` <= 0, a fitted K <= 0.
+    """
+    from tactcad.design.requirements_section import cites_paper
+
+    k_sensor = float(next(iter(read.data.values())).k_sensor_N_per_mm)
+    calibrations = from_fits(read.fits, "csv")
+    report = audit(plan, calibrations, model, gain_tolerance, k_sensor,
+                   paper_criteria=cites_paper(plan.raw))
+    unread, flags = unread_elements(plan, calibrations, source)
+    report["flags"] += flags
+    report["elements_without_readings"] = unread
+    return report
+
+
 def audit(plan, calibrations: list[ElementCalibration], model: str = "closed-form",
           gain_tolerance: float = DEFAULT_GAIN_TOLERANCE,
           k_sensor: float = paper_data.K_SENSOR_N_PER_MM,
@@ -297,7 +334,9 @@ def audit(plan, calibrations: list[ElementCalibration], model: str = "closed-for
         })
         if web is None:
             flags.append(_flag([c.element], "as-built web", c.K_N_per_mm, 0.0,
-                               f"no web in {WEB_SEARCH_MM} mm gives K = {c.K_N_per_mm:g} N/mm"))
+                               f"element {c.element}: no web in {WEB_SEARCH_MM} mm gives "
+                               f"K = {c.K_N_per_mm:g} N/mm (design {g.web_thickness_mm:g} ± "
+                               f"{g.web_tolerance_mm:g} mm)"))
         elif abs(web - g.web_thickness_mm) > g.web_tolerance_mm:
             flags.append(_flag([c.element], "web deviation (mm)", web - g.web_thickness_mm,
                                g.web_tolerance_mm,

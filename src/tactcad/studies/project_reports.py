@@ -7,7 +7,7 @@ Units: mm, N, N/mm, V, K, s; errors relative.
 
 from __future__ import annotations
 
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, NamedTuple, Sequence
 
 from tactcad.errors import DesignError
 
@@ -64,9 +64,62 @@ def thermal_record(plan, model: str = "closed-form", element: int | None = None)
     return replace(report, records=chosen)
 
 
+class BudgetCalibration(NamedTuple):
+    """A calibration file as the K_obj budget reads it (:func:`budget_calibration`).
+
+    Attributes:
+        fits: element number -> its fit (:class:`tactcad.mechanics.calibration.Calibration`),
+            the elements the file has readings of.
+        audit: the audit ``tactcad calibrate --data`` gives of the same file
+            (:func:`tactcad.paper.calibration_audit.audit_file`).
+        warnings: one line per flag of the audit, naming the option and the file.
+    """
+
+    fits: dict
+    audit: dict
+    warnings: list
+
+
+def budget_calibration(plan, path, model: str = "closed-form",
+                       option: str = "--calibration") -> BudgetCalibration:
+    """Read a calibration file for the budget as ``tactcad calibrate --data`` reads it: the
+    same reader and refusals (:func:`tactcad.mechanics.calibration_file.read_calibration`,
+    the rigs' force gauge where the file states none) and the same audit
+    (:func:`tactcad.paper.calibration_audit.audit_file`), each of whose flags is a warning.
+
+    Args:
+        plan: the design's plan. path: the CSV, LVM or TDMS file.
+        model: ladder level of the audit's as-built web and gauge strain.
+        option: the option (or keyword) that named the file, for the refusals and warnings.
+
+    Returns:
+        :class:`BudgetCalibration`.
+
+    Raises:
+        CalibrationError: the file cannot be read or fitted, or names an element the design
+            does not have (the message names ``option`` and the file).
+    """
+    from tactcad.mechanics.calibration_file import read_calibration
+    from tactcad.paper.calibration_audit import audit_file
+    from tactcad.studies.verification import calibration_gauge
+
+    k_sensor = float(calibration_gauge(plan).gauge.stiffness_N_per_mm)
+    read = read_calibration(path, option, default_k_sensor=k_sensor,
+                            element_numbers=[s.number for s in plan.slots])
+    audit = audit_file(plan, read, str(path), model)
+    lines = []
+    for flag in audit["flags"]:
+        tail = (": its units' calibration term is the expected one of a static calibration, "
+                "as without a calibration file" if flag["check"] == "readings" else "")
+        lines.append(f"{option} = {path}: {flag['text']}{tail} (tactcad calibrate --data "
+                     f"flags it)")
+    return BudgetCalibration(dict(read.fits), audit, lines)
+
+
 def budget_record(plan, model: str = "closed-form", force_N: float | None = None,
                   delta_T_K: float | None = None, points: int | None = None,
-                  calibrations: dict | None = None) -> tuple[dict, Any]:
+                  calibrations: dict | None = None,
+                  calibration: BudgetCalibration | None = None) -> tuple[dict, Any]:
     """The K_obj error budget of every sensing unit and of the array
     (:func:`tactcad.in_use.kobj_budget.kobj_budget`) at the design's K_obj range, with the
     reasons of its range and force.
@@ -76,15 +129,27 @@ def budget_record(plan, model: str = "closed-form", force_N: float | None = None
         force_N: force on the reference at the reading (N; None: the design's full-scale
             force). delta_T_K: temperature step between tare and reading (K; None: the
             budget's default). points: K_obj grid points (None: the default).
-        calibrations: measured calibrations' standard errors (``budget --calibration``),
-            None: the expected errors of the calibration ``calibrate`` drives.
+        calibrations: measured calibrations' standard errors, element -> fit; None: the
+            expected errors of the calibration ``calibrate`` drives.
+        calibration: a calibration file read and audited (:func:`budget_calibration`,
+            ``budget --calibration``): its fits are the calibrations, each of its audit's
+            flags is issued as a warning and listed in the record's ``warnings``, and the
+            record's ``calibration_file`` holds the audit's flags and the elements without
+            readings.
 
     Returns:
         (the record ``tactcad budget --json`` prints, the budget object).
     """
+    import warnings
+
+    from tactcad.errors import CalibrationAuditWarning
     from tactcad.in_use.kobj_budget import BUDGET_POINTS, DEFAULT_DELTA_T_K, kobj_budget
     from tactcad.studies.verification import calibration_gauge, requirements_of
 
+    if calibration is not None:
+        calibrations = calibration.fits
+        for line in calibration.warnings:
+            warnings.warn(CalibrationAuditWarning(line), stacklevel=2)
     req = requirements_of(plan)
     force = req.full_scale_force_N if force_N is None else force_N
     budget = kobj_budget(plan, req.kobj_range_N_per_mm, force,
@@ -96,6 +161,11 @@ def budget_record(plan, model: str = "closed-form", force_N: float | None = None
     record = {**budget.as_json(), "kobj_range_reason": req.reasons["kobj_range_N_per_mm"],
               "force_reason": "--force-N" if force_N is not None
               else f"full-scale force: {req.reasons['full_scale_force_N']}"}
+    if calibration is not None:
+        record["calibration_file"] = {
+            "elements_without_readings": calibration.audit["elements_without_readings"],
+            "flags": calibration.audit["flags"]}
+        record["warnings"] = list(calibration.warnings)
     return record, budget
 
 
