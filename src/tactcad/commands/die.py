@@ -507,12 +507,12 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
         (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
         budget.as_json(), atlas_view(design_file, (plan.full_scale_force_N,
-                                                    *plan.kobj_range_N_per_mm)))
+                                                    *plan.kobj_range_N_per_mm)),
+        full_scale_force_N=plan.full_scale_force_N)
     write_review_page(made["review"], contents, import_map())
     listed = {k: made[k].relative_to(staging).as_posix() for k in made
               if k not in NOT_IN_MANIFEST}
-    manifest = die_manifest(head, staging, listed, {"die": plan.as_json(),
-                                                     "elements": elements})
+    manifest = die_manifest(head, staging, listed, {"die": plan.as_json(), "rows": elements})
     made["manifest"].write_text(manifest_text(manifest), encoding="utf-8")
 
 
