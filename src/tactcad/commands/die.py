@@ -236,8 +236,13 @@ def plan_of(asked: dict) -> PlannedDie:
 
     name = _name(asked["name"])
     targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
-    jaw, jaw_file = jaw_of(asked["jaw"])
-    room = jaw_room(jaw, jaw_file)
+    try:
+        jaw, jaw_file = jaw_of(asked["jaw"])
+        room = jaw_room(jaw, jaw_file)
+    except DesignError as exc:  # a jaw the die's file states is named by its key
+        if asked.get("file"):
+            raise _as_file_keys(exc, asked["file"]) from None
+        raise
     try:
         plan = doped_die_plan(targets, room, asked.get("kobj_resolution_rel"),
                               columns=asked["columns"], pitch_um=asked["pitch_um"], name=name,
