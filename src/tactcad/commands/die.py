@@ -92,7 +92,30 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", default="die", metavar="DIR", type=output_folder,
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run_die_command)
+
+
+def run_die_command(args: argparse.Namespace) -> int:
+    """``tactcad die``: :func:`run`, its ``--out`` folder's name first held to the names
+    ``design --out`` and ``tactcad new`` take
+    (:func:`tactcad.project_folder.refuse_no_design_name`).
+
+    Args:
+        args: the die command's parsed options.
+
+    Returns:
+        The exit code of :func:`run` (0: the die's checks pass; 1: one fails).
+
+    Raises:
+        DesignError: ``--out`` whose folder name has a character outside the names' rule
+            (a space, an accent), naming the value, the rule and a name to paste; any
+            refusal of :func:`run`.
+    """
+    from tactcad.project_folder import refuse_no_design_name
+
+    out = str(args.out)
+    refuse_no_design_name("--out", out, Path(os.path.abspath(os.path.expanduser(out))).name)
+    return run(args)
 
 
 #: The targets' options, by the die design file's key; and the options with defaults.
