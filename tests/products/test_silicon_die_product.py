@@ -94,6 +94,11 @@ def test_a_dies_export_has_its_review_page_and_manifest_and_checks(die_folder):
     out = die_folder / "exports"
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["product"] == "silicon-die"
+    # its beams as its rows, each with its role and its own rated force
+    assert [(r["row"], r["role"]) for r in manifest["rows"]] == [(1, "reference"),
+                                                                 (2, "measuring")]
+    assert "elements" not in manifest
+    assert manifest["rows"][1]["rated_force_N"] < manifest["die"]["full_scale_force_N"]
     listed = {f["path"] for f in manifest["files"]}
     assert {"review/index.html", "grasper_jaw_5mm_mems.gds", "scenes/"
             "grasper_jaw_5mm_mems_in_jaw.glb"} <= listed

@@ -92,7 +92,30 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", default="die", metavar="DIR", type=output_folder,
                    help="folder for the masks and the record (default ./die)")
     add_output_args(p, "print the plan and the checks as one JSON object")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run_die_command)
+
+
+def run_die_command(args: argparse.Namespace) -> int:
+    """``tactcad die``: :func:`run`, its ``--out`` folder's name first held to the names
+    ``design --out`` and ``tactcad new`` take
+    (:func:`tactcad.project_folder.refuse_no_design_name`).
+
+    Args:
+        args: the die command's parsed options.
+
+    Returns:
+        The exit code of :func:`run` (0: the die's checks pass; 1: one fails).
+
+    Raises:
+        DesignError: ``--out`` whose folder name has a character outside the names' rule
+            (a space, an accent), naming the value, the rule and a name to paste; any
+            refusal of :func:`run`.
+    """
+    from tactcad.project_folder import refuse_no_design_name
+
+    out = str(args.out)
+    refuse_no_design_name("--out", out, Path(os.path.abspath(os.path.expanduser(out))).name)
+    return run(args)
 
 
 #: The targets' options, by the die design file's key; and the options with defaults.
@@ -236,8 +259,13 @@ def plan_of(asked: dict) -> PlannedDie:
 
     name = _name(asked["name"])
     targets = Targets(asked["kr_over_km"], tuple(asked["kobj_range"]), asked["full_scale_force"])
-    jaw, jaw_file = jaw_of(asked["jaw"])
-    room = jaw_room(jaw, jaw_file)
+    try:
+        jaw, jaw_file = jaw_of(asked["jaw"])
+        room = jaw_room(jaw, jaw_file)
+    except DesignError as exc:  # a jaw the die's file states is named by its key
+        if asked.get("file"):
+            raise _as_file_keys(exc, asked["file"]) from None
+        raise
     try:
         plan = doped_die_plan(targets, room, asked.get("kobj_resolution_rel"),
                               columns=asked["columns"], pitch_um=asked["pitch_um"], name=name,
@@ -507,12 +535,12 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
         (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
         budget.as_json(), atlas_view(design_file, (plan.full_scale_force_N,
-                                                    *plan.kobj_range_N_per_mm)))
+                                                    *plan.kobj_range_N_per_mm)),
+        full_scale_force_N=plan.full_scale_force_N)
     write_review_page(made["review"], contents, import_map())
     listed = {k: made[k].relative_to(staging).as_posix() for k in made
               if k not in NOT_IN_MANIFEST}
-    manifest = die_manifest(head, staging, listed, {"die": plan.as_json(),
-                                                     "elements": elements})
+    manifest = die_manifest(head, staging, listed, {"die": plan.as_json(), "rows": elements})
     made["manifest"].write_text(manifest_text(manifest), encoding="utf-8")
 
 

@@ -438,13 +438,17 @@ function showTables() {
   // element's own limit is its yield-limited force
   // the columns the records have, in this order; a product's own figures (a die's beams)
   // after them under their own names
-  const known = ['element', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'yield_limited_force_N',
-                 'tip_deflection_mm_at_full_scale', 'stress_MPa_per_N', 'stress_MPa_at_full_scale',
+  // a die's records are its rows (row, role), each with its own rated force
+  const known = ['element', 'row', 'role', 'part_name', 'arm_length_mm', 'stiffness_N_per_mm', 'yield_limited_force_N',
+                 'tip_deflection_mm_at_full_scale', 'rated_force_N', 'stress_MPa_per_N', 'stress_MPa_at_full_scale',
+                 'stress_MPa_at_rated_force',
                  'yield_safety_factor_at_full_scale', 'gauge_strain_at_full_scale', 'model'];
   const present = new Set(DATA.elements.flatMap((r) => Object.keys(r)));
   const cols = [...known.filter((c) => present.has(c) || !DATA.elements.length),
                 ...[...present].filter((c) => !known.includes(c) && c !== 'warnings' && c !== 'full_scale_force_N').sort()];
-  const labels = { element: 'element', part_name: 'part', arm_length_mm: 'arm length (mm)',
+  const labels = { element: 'element', row: 'row', role: 'role', part_name: 'part', arm_length_mm: 'arm length (mm)',
+                   rated_force_N: 'rated force of its row (N)',
+                   stress_MPa_at_rated_force: 'root stress at its rated force (MPa)',
                    stiffness_N_per_mm: 'K (N/mm)', yield_limited_force_N: 'yield-limited force (N)',
                    tip_deflection_mm_at_full_scale: 'δ at rated full scale (mm)',
                    stress_MPa_per_N: 'stress (MPa/N)', stress_MPa_at_full_scale: 'stress at rated full scale (MPa)',
@@ -452,11 +456,12 @@ function showTables() {
                    gauge_strain_at_full_scale: 'gauge strain at rated full scale', model: 'model',
                    strength_over_stress_at_rating: 'strength of etched silicon / root stress at its rated force' };
   const box = $('elements-table');
-  const rated = DATA.elements.length ? DATA.elements[0].full_scale_force_N : null;
+  const rated = DATA.elements.length && DATA.elements[0].full_scale_force_N != null
+    ? DATA.elements[0].full_scale_force_N : (DATA.full_scale_force_N ?? null);
   box.replaceChildren(...(rated == null ? [] : [el('p', `rated full-scale force ${fmt(rated)} N (the design's)`)]),
                       table(cols, DATA.elements, labels));
   const warned = DATA.elements.filter((r) => r.warnings && r.warnings.length);
-  for (const r of warned) box.append(el('p', `element ${r.element}: ${r.warnings.join('; ')}`, 'warn'));
+  for (const r of warned) box.append(el('p', `${r.element != null ? `element ${r.element}` : `row ${r.row} (${r.role})`}: ${r.warnings.join('; ')}`, 'warn'));
   showVerification();
   showBudget();
   showAtlas();

@@ -4,7 +4,9 @@
 
 * parts added, removed and changed (quantity, process, material, volume,
   bounding box, or the bytes of the part's STEP file);
-* elements whose part, arm, stiffness K or strength changed, before and after;
+* elements whose part, arm, stiffness K or strength changed, before and after; a silicon
+  die's rows (its manifest's "rows": row 1 reference, row 2 measuring) likewise, each named
+  by its number and role and with its own rated force;
 * derived dimensions whose value changed;
 * drawing sheets added, removed and changed; a new sheet that replaces the
   old sheet of the same element (the element's part was renamed when its arm
@@ -38,8 +40,15 @@ ELEMENT_FIELDS = {
     "stress_MPa_per_N": "MPa/N", "full_scale_force_N": "N", "yield_limited_force_N": "N",
     "yield_safety_factor_at_full_scale": "", "gauge_strain_at_full_scale": "",
     "tip_deflection_mm_at_full_scale": "mm",
-    # a silicon die's beams (its manifest's "elements")
+    # a silicon die's beams in a manifest written before its rows were named "rows"
     "stress_MPa_at_full_scale": "MPa", "strength_over_stress_at_rating": "",
+}
+#: A silicon die's row fields compared (its manifest's "rows", one a row's beam), with their
+#: units: the force is the row's own rated force, not the die's full-scale force.
+ROW_FIELDS = {
+    "role": "", "part_name": "", "arm_length_mm": "mm", "stiffness_N_per_mm": "N/mm",
+    "rated_force_N": "N", "stress_MPa_per_N": "MPa/N", "stress_MPa_at_rated_force": "MPa",
+    "strength_over_stress_at_rating": "",
 }
 #: A product's own table of derived values in its manifest (a silicon die's "die"), compared
 #: value by value as the array's "derived" list is.
@@ -75,7 +84,7 @@ def read_manifest(folder: str | Path) -> dict:
 
 #: Manifest lists compared by key: section -> (key field, its type).
 _KEYED = {"files": ("path", str), "strength": ("element", int), "elements": ("element", int),
-          "derived": ("name", str)}
+          "rows": ("row", int), "derived": ("name", str)}
 
 
 _TYPE_WORDS = {str: "text", int: "an integer"}
@@ -124,6 +133,7 @@ class Diff:
     new: str
     parts: dict = field(default_factory=dict)  # added, removed, changed
     elements: list = field(default_factory=list)
+    rows: list = field(default_factory=list)  # a silicon die's rows
     derived: list = field(default_factory=list)
     sheets: list = field(default_factory=list)
     files: dict = field(default_factory=dict)  # changed, added, removed (paths)
@@ -131,12 +141,13 @@ class Diff:
     @property
     def changed(self) -> bool:
         """True when anything differs, the bytes of any file included."""
-        return bool(any(self.parts.values()) or self.elements or self.derived or self.sheets
+        return bool(any(self.parts.values()) or self.elements or self.rows or self.derived
+                    or self.sheets
                     or any(self.files.values()))
 
     def as_json(self) -> dict:
         return {"old": self.old, "new": self.new, "changed": self.changed, "parts": self.parts,
-                "elements": self.elements, "derived": self.derived, "sheets": self.sheets,
+                "elements": self.elements, "rows": self.rows, "derived": self.derived, "sheets": self.sheets,
                 "files": self.files}
 
     def lines(self) -> list[str]:
@@ -150,6 +161,8 @@ class Diff:
             out.append(f"part changed  {name}: " + _fields_text(ch))
         for e in self.elements:
             out.append(f"element {e['element']:<4} " + _fields_text(e["changes"]))
+        for r in self.rows:
+            out.append(f"{row_words(r)}  " + _fields_text(r["changes"], ROW_FIELDS))
         for d in self.derived:
             out.append(f"derived       {d['name']}: {_value(d['before'])} -> {_value(d['after'])}"
                        f" {d.get('unit') or ''}".rstrip())
@@ -175,10 +188,17 @@ def _value(v: Any) -> str:
     return "-" if v is None else str(v)
 
 
-def _fields_text(changes: Mapping[str, Mapping]) -> str:
+def row_words(record: Mapping[str, Any]) -> str:
+    """A die's row as the die's commands name it: ``row 2 (measuring)``."""
+    role = record.get("role")
+    return f"row {record['row']}" + (f" ({role})" if role else "")
+
+
+def _fields_text(changes: Mapping[str, Mapping], units: Mapping[str, str] = ELEMENT_FIELDS
+                 ) -> str:
     parts = []
     for k, ch in changes.items():
-        unit = ELEMENT_FIELDS.get(k, "")
+        unit = units.get(k, "")
         parts.append(f"{k} {_value(ch['before'])} -> {_value(ch['after'])}"
                      + (f" {unit}" if unit else ""))
     return ", ".join(parts)
@@ -200,6 +220,7 @@ def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
                   "removed": sorted(old_files.keys() - new_files.keys())}
     diff.parts = _parts(old, new, old_files, new_files)
     diff.elements = _elements(old, new)
+    diff.rows = _rows(old, new)
     diff.derived = _derived(old, new)
     diff.sheets = _sheets(old, new, old_files, new_files)
     return diff
@@ -224,7 +245,8 @@ def _parts(old: dict, new: dict, old_files, new_files) -> dict:
 
 
 def _by_element(man: dict) -> dict[int, dict]:
-    """The element records: an array's "strength" list, a die's "elements" (its beams)."""
+    """The element records: an array's "strength" list; a die's "elements" (its beams, in a
+    manifest written before they were its "rows")."""
     records = man.get("strength") or man.get("elements") or []
     return {r["element"]: r for r in records if "element" in r}
 
@@ -281,6 +303,24 @@ def _elements(old: dict, new: dict) -> list[dict]:
         ch = _changes(a[n], b[n], ELEMENT_FIELDS)
         if ch:
             out.append({"element": n, "changes": ch})
+    return out
+
+
+def _rows(old: dict, new: dict) -> list[dict]:
+    """A die's rows (its manifest's "rows") whose fields differ: ``{"row", "role",
+    "changes"}``, the role the newer manifest's (the older's for a row it lacks)."""
+    a = {r["row"]: r for r in old.get("rows") or []}
+    b = {r["row"]: r for r in new.get("rows") or []}
+    out = []
+    for n in sorted(a.keys() | b.keys()):
+        role = (b.get(n) or a.get(n)).get("role")
+        if n not in a or n not in b:
+            out.append({"row": n, "role": role,
+                        "changes": {"present": {"before": n in a, "after": n in b}}})
+            continue
+        ch = _changes(a[n], b[n], ROW_FIELDS)
+        if ch:
+            out.append({"row": n, "role": role, "changes": ch})
     return out
 
 

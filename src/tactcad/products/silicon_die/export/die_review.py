@@ -80,16 +80,29 @@ def write_scene_glb(solids: Mapping[str, tuple[Any, tuple]], path: Path, name: s
 
 
 def beam_elements(strength: Mapping[str, Any], stiffness: Mapping[str, Any]) -> list[dict]:
-    """Each row's beam as the page's element table shows an array's elements: K (N/mm),
-    root stress per newton and at the force it carries (MPa), that force (N), the strength
-    of etched silicon over that stress (silicon is brittle: no yield), from the die's ``strength`` and ``stiffness`` reports (one row each)."""
+    """Each row's beam as the page's element table shows an array's elements, named as the
+    die's other commands name it (its ``row`` and ``role``): K (N/mm), root stress per
+    newton and at the force the row carries in use (MPa), that force (``rated_force_N``, N:
+    the row's own, not the die's full-scale force), the strength of etched silicon over
+    that stress (silicon is brittle: no yield), from the die's ``strength`` and
+    ``stiffness`` reports (one row each).
+
+    Args:
+        strength: :func:`tactcad.products.silicon_die.studies.die_reports.strength_report`'s
+            report.
+        stiffness: the die's stiffness report (``rows``, each with its ``role`` and
+            ``stiffness_N_per_mm``).
+
+    Returns:
+        One record a row, keyed ``row`` (1, 2) and ``role`` (reference, measuring).
+    """
     k_of = {r["role"]: r for r in stiffness["rows"]}
-    return [{"element": r["row"], "part_name": f"{r['role']} beam",
+    return [{"row": r["row"], "role": r["role"], "part_name": f"{r['role']} beam",
              "arm_length_mm": r["length_um"] / 1e3,
              "stiffness_N_per_mm": k_of[r["role"]]["stiffness_N_per_mm"],
-             "full_scale_force_N": r["rated_force_N"],
+             "rated_force_N": r["rated_force_N"],
              "stress_MPa_per_N": r["root_peak_stress_MPa_per_N"],
-             "stress_MPa_at_full_scale": r["root_peak_stress_MPa_at_rated_force"],
+             "stress_MPa_at_rated_force": r["root_peak_stress_MPa_at_rated_force"],
              "strength_over_stress_at_rating": r["strength_over_stress"],
              "model": strength["model"]} for r in strength["rows"]]
 
@@ -121,10 +134,11 @@ def budget_table(budget: Mapping[str, Any]) -> dict | None:
 def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
                            drawing: tuple[str, str], scene_glb: bytes, bom_csv: str,
                            elements: list[dict], budget: Mapping[str, Any],
-                           atlas: dict | None = None):
+                           atlas: dict | None = None, full_scale_force_N: float | None = None):
     """The review page's contents (:class:`tactcad.export.review_page.ReviewContents`) of a
     die: ``drawing`` (export path, SVG text), the mount's GLB, the BOM's CSV text, the beams
-    as elements (:func:`beam_elements`), the jaw's atlas (:mod:`tactcad.export.atlas_view`;
+    as elements (:func:`beam_elements`: each row with its own rated force), the die's
+    full-scale force (N; the page's "rated full-scale force", None: not shown), the jaw's atlas (:mod:`tactcad.export.atlas_view`;
     None: none), the verification records
     (:func:`tactcad.products.silicon_die.studies.die_verification.die_verification`) and the K_obj budget; dated
     as the sheets are (``SOURCE_DATE_EPOCH``, else undated), never by the clock."""
@@ -138,6 +152,7 @@ def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
                                epoch_date(os.environ) or "\u2014", three_version(),
                                atlas=atlas)
     contents.data["kobj_budget"] = budget_table(budget)
+    contents.data["full_scale_force_N"] = full_scale_force_N
     return contents
 
 
