@@ -650,7 +650,8 @@ class Project:
                 element the design does not have (named ``calibration``).
         """
         from tactcad.errors import DesignError
-        from tactcad.studies.project_reports import budget_calibration, budget_record
+        from tactcad.paper.calibration_audit import budget_calibration
+        from tactcad.studies.project_reports import budget_record
 
         # the options' own ranges (``budget --force-N``, ``--delta-T-K``), named as keywords
         for name, value, (lo, hi), lo_open in (("--force-N", force_N, (0.0, 1000.0), True),

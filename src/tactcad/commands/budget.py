@@ -65,7 +65,7 @@ def calibrations_from_file(path: str, plan, model: str = "closed-form"):
     """The calibration file ``path`` as the budget reads it: read and audited as ``tactcad
     calibrate --data`` reads and audits it (the same reader, the same refusals, the same
     force gauge where the file states none: the rigs'; the same flags, each a warning of the
-    budget; :func:`tactcad.studies.project_reports.budget_calibration`).
+    budget; :func:`tactcad.paper.calibration_audit.budget_calibration`).
 
     Returns:
         :class:`tactcad.studies.project_reports.BudgetCalibration`: the fits (element
@@ -76,7 +76,7 @@ def calibrations_from_file(path: str, plan, model: str = "closed-form"):
         CalibrationError: the file cannot be read or fitted, or names an element number the
             design does not have (:func:`tactcad.mechanics.calibration_file.read_calibration`).
     """
-    from tactcad.studies.project_reports import budget_calibration
+    from tactcad.paper.calibration_audit import budget_calibration
 
     return budget_calibration(plan, path, model, "--calibration")
 

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.optimize import brentq
@@ -37,6 +38,9 @@ from scipy.optimize import brentq
 from tactcad.mechanics import calibration as cal
 from tactcad.paper import data as paper_data
 from tactcad.paper.calibration_table1 import table1_kv_over_k_check
+
+if TYPE_CHECKING:
+    from tactcad.studies.project_reports import BudgetCalibration
 
 #: Gauge gain of the simulated rig (V per unit strain of the grid's strain): quarter
 #: bridge at 2.5 V excitation, gauge factor 2.0 and an amplifier gain of 96 give 120 V per
@@ -452,3 +456,39 @@ def table1_consistency(k_sensor: float = paper_data.K_SENSOR_N_PER_MM,
                     "z_travel_implied_um": z_implied, "z_travel_stated_um": z_max_um,
                     "kv_over_k_printed_consistent": kv_check[r.element].consistent})
     return out
+
+
+def budget_calibration(plan, path, model: str = "closed-form",
+                       option: str = "--calibration") -> "BudgetCalibration":
+    """Read a calibration file for the budget as ``tactcad calibrate --data`` reads it: the
+    same reader and refusals (:func:`tactcad.mechanics.calibration_file.read_calibration`,
+    the rigs' force gauge where the file states none) and the same audit
+    (:func:`audit_file`), each of whose flags is a warning.
+
+    Args:
+        plan: the design's plan. path: the CSV, LVM or TDMS file.
+        model: ladder level of the audit's as-built web and gauge strain.
+        option: the option (or keyword) that named the file, for the refusals and warnings.
+
+    Returns:
+        :class:`tactcad.studies.project_reports.BudgetCalibration`.
+
+    Raises:
+        CalibrationError: the file cannot be read or fitted, or names an element the design
+            does not have (the message names ``option`` and the file).
+    """
+    from tactcad.mechanics.calibration_file import read_calibration
+    from tactcad.studies.project_reports import BudgetCalibration
+    from tactcad.studies.verification import calibration_gauge
+
+    k_sensor = float(calibration_gauge(plan).gauge.stiffness_N_per_mm)
+    read = read_calibration(path, option, default_k_sensor=k_sensor,
+                            element_numbers=[s.number for s in plan.slots])
+    audit = audit_file(plan, read, str(path), model)
+    lines = []
+    for flag in audit["flags"]:
+        tail = (": its units' calibration term is the expected one of a static calibration, "
+                "as without a calibration file" if flag["check"] == "readings" else "")
+        lines.append(f"{option} = {path}: {flag['text']}{tail} (tactcad calibrate --data "
+                     f"flags it)")
+    return BudgetCalibration(dict(read.fits), audit, lines)

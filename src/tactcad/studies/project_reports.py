@@ -65,7 +65,8 @@ def thermal_record(plan, model: str = "closed-form", element: int | None = None)
 
 
 class BudgetCalibration(NamedTuple):
-    """A calibration file as the K_obj budget reads it (:func:`budget_calibration`).
+    """A calibration file as the K_obj budget reads it
+    (:func:`tactcad.paper.calibration_audit.budget_calibration`).
 
     Attributes:
         fits: element number -> its fit (:class:`tactcad.mechanics.calibration.Calibration`),
@@ -78,42 +79,6 @@ class BudgetCalibration(NamedTuple):
     fits: dict
     audit: dict
     warnings: list
-
-
-def budget_calibration(plan, path, model: str = "closed-form",
-                       option: str = "--calibration") -> BudgetCalibration:
-    """Read a calibration file for the budget as ``tactcad calibrate --data`` reads it: the
-    same reader and refusals (:func:`tactcad.mechanics.calibration_file.read_calibration`,
-    the rigs' force gauge where the file states none) and the same audit
-    (:func:`tactcad.paper.calibration_audit.audit_file`), each of whose flags is a warning.
-
-    Args:
-        plan: the design's plan. path: the CSV, LVM or TDMS file.
-        model: ladder level of the audit's as-built web and gauge strain.
-        option: the option (or keyword) that named the file, for the refusals and warnings.
-
-    Returns:
-        :class:`BudgetCalibration`.
-
-    Raises:
-        CalibrationError: the file cannot be read or fitted, or names an element the design
-            does not have (the message names ``option`` and the file).
-    """
-    from tactcad.mechanics.calibration_file import read_calibration
-    from tactcad.paper.calibration_audit import audit_file
-    from tactcad.studies.verification import calibration_gauge
-
-    k_sensor = float(calibration_gauge(plan).gauge.stiffness_N_per_mm)
-    read = read_calibration(path, option, default_k_sensor=k_sensor,
-                            element_numbers=[s.number for s in plan.slots])
-    audit = audit_file(plan, read, str(path), model)
-    lines = []
-    for flag in audit["flags"]:
-        tail = (": its units' calibration term is the expected one of a static calibration, "
-                "as without a calibration file" if flag["check"] == "readings" else "")
-        lines.append(f"{option} = {path}: {flag['text']}{tail} (tactcad calibrate --data "
-                     f"flags it)")
-    return BudgetCalibration(dict(read.fits), audit, lines)
 
 
 def budget_record(plan, model: str = "closed-form", force_N: float | None = None,
@@ -131,7 +96,8 @@ def budget_record(plan, model: str = "closed-form", force_N: float | None = None
             budget's default). points: K_obj grid points (None: the default).
         calibrations: measured calibrations' standard errors, element -> fit; None: the
             expected errors of the calibration ``calibrate`` drives.
-        calibration: a calibration file read and audited (:func:`budget_calibration`,
+        calibration: a calibration file read and audited
+            (:func:`tactcad.paper.calibration_audit.budget_calibration`,
             ``budget --calibration``): its fits are the calibrations, each of its audit's
             flags is issued as a warning and listed in the record's ``warnings``, and the
             record's ``calibration_file`` holds the audit's flags and the elements without
