@@ -89,6 +89,33 @@ DEFAULT_OPENING_DEG = 60.0
 DEFAULT_JAW_BEYOND_MM = 2.0
 
 
+def check_kobj(k_obj_N_per_mm: float) -> None:
+    """Refuse a tissue K_obj the grasp cannot read: outside the K_obj a design file's range
+    may state (:data:`tactcad.design.requirements_section.MIN_KOBJ_N_PER_MM` ...
+    ``MAX_KOBJ_N_PER_MM``). Far below the least the tissue is lost in the elements' K (K +
+    K_obj rounds to K): a unit's K_obj read is round-off (on the 10 mm grasper's comb at
+    1e-30 N/mm it reads 1e-15 N/mm), and at 1e-200 N/mm the unit's true K_obj, the
+    geometric mean of its two tips', underflows to 0.
+
+    Args:
+        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm).
+
+    Raises:
+        DesignError: not a finite number in the range, as the field ``k_obj_N_per_mm``
+            (a command names its ``--kobj``, the API its ``kobj``).
+    """
+    from tactcad.design.requirements_section import MAX_KOBJ_N_PER_MM, MIN_KOBJ_N_PER_MM
+
+    ok = (isinstance(k_obj_N_per_mm, (int, float)) and not isinstance(k_obj_N_per_mm, bool)
+          and math.isfinite(k_obj_N_per_mm)
+          and MIN_KOBJ_N_PER_MM <= k_obj_N_per_mm <= MAX_KOBJ_N_PER_MM)
+    if not ok:
+        raise DesignError("k_obj_N_per_mm", k_obj_N_per_mm,
+                          f"{MIN_KOBJ_N_PER_MM:g} ... {MAX_KOBJ_N_PER_MM:g} N/mm",
+                          "a softer tissue is lost in the elements' stiffness: its readings "
+                          "would be round-off")
+
+
 def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thickness_mm: float,
                       coupling: str = "layer",
                       poisson_ratio: float = TISSUE_POISSON_RATIO,
@@ -801,7 +828,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
             :func:`tactcad.mechanics.evaluation.ladder_stiffness_by_element`.
         units: the design's (reference, measuring) element numbers
             (:func:`tactcad.mechanics.readout_chain.row_units`).
-        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm), > 0.
+        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm),
+            :func:`check_kobj`'s range (1e-06 ... 10000).
         rated_force_N: each element's rated full-scale force (N), > 0.
         angle_deg: the closing angle (degrees), 0 ... the jaw's opening; or
         force_N: the grasp force (N) the tips put on the slab, > 0 (each layout finds its angle).
@@ -824,6 +852,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
     """
     if (angle_deg is None) == (force_N is None):
         raise DesignError("angle_deg / force_N", (angle_deg, force_N), "exactly one of them")
+    check_kobj(k_obj_N_per_mm)
     if force_N is not None and not (math.isfinite(force_N) and force_N > 0):
         raise DesignError("force_N", force_N, "> 0 N")
     if not (math.isfinite(rated_force_N) and rated_force_N > 0):

@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from tactcad.design.requirements_section import MAX_KOBJ_N_PER_MM, MIN_KOBJ_N_PER_MM
 from tactcad.errors import DesignError
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_PROFILE,
@@ -34,7 +35,9 @@ GRASP_NUMBERS: dict[str, tuple[float, float, str, bool]] = {
     "angle_deg": (0.0, 90.0, "degrees", False),
     "force_N": (MIN_GRASP_FORCE_N, 1000.0, "N", False),
     "slab_thickness_mm": (0.0, 100.0, "mm", True),
-    "kobj": (0.0, 1e4, "N/mm", True),
+    # the K_obj a design file's range may state: far below it the tissue is lost in the
+    # elements' K (K + K_obj rounds to K) and the grasp's readings are round-off
+    "kobj": (MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, "N/mm", False),
     "pivot_mm": (-500.0, 500.0, "mm", False),
     "pin_to_tip_mm": (1.0, 200.0, "mm", False),
     "opening_deg": (0.0, 90.0, "degrees", True),
