@@ -172,7 +172,8 @@ def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local
     different thicknesses the slab's coupling is kept, scaled by each face's own softening,
     C_ij = C_ij(slab) sqrt(s_i s_j) (:func:`local_softening`; an approximation, small
     where such faces are far apart), all on the one ``base``."""
-    t = np.round(np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),)), 9)
+    t = np.round(np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),)),
+                 LAYER_THICKNESS_DECIMALS)
     s = local_softening(punches, slab_thickness_mm, t, poisson_ratio, base)
     out = slab_unit * np.sqrt(np.outer(s, s))
     for h in np.unique(t):
@@ -180,6 +181,52 @@ def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local
         out[np.ix_(group, group)] = unit_punch_compliance([punches[i] for i in group],
                                                           poisson_ratio, float(h), base)
     return out
+
+
+#: The layer's thickness under each tip is solved to this many decimals (mm): faces on one
+#: thickness to 1e-9 mm are solved together (:func:`local_layer_compliance`), and a tip on
+#: less than half of it would sit on no tissue.
+LAYER_THICKNESS_DECIMALS = 9
+#: The thinnest tissue under a tip the layer takes (mm): :data:`LAYER_THICKNESS_DECIMALS`.
+MIN_LOCAL_THICKNESS_MM = 10.0 ** -LAYER_THICKNESS_DECIMALS
+
+
+def check_wedge_thick_enough(jaw: JawGeometry, radius_mm) -> None:
+    """The wedge of the jaw's slab thickness (at the last tip) leaves at least
+    :data:`MIN_LOCAL_THICKNESS_MM` of tissue under the tip nearest the pin (the wedge's
+    thickness h r / r_last): a thinner wedge's tissue there rounds to nothing.
+
+    Args:
+        jaw: the jaw and its ``slab_thickness_mm`` (mm).
+        radius_mm: each tip's radius from the pin (mm), shape (m,).
+
+    Raises:
+        DesignError: ``jaw.slab_thickness_mm`` thinner than that, named with the range
+            that works (its least rounded up; at most the open jaw's gap at the last tip,
+            :func:`check_wedge_fits`) so that a command names its ``--slab-thickness-mm``.
+    """
+    r = np.asarray(radius_mm, float)
+    first, last = float(r.min()), float(r.max())
+    if jaw.slab_thickness_mm * first / last >= MIN_LOCAL_THICKNESS_MM * (1 - 1e-9):
+        return
+    gap = math.floor(last * math.sin(math.radians(jaw.opening_angle_deg)) * 1e3) / 1e3
+    hi = min(gap, 100.0)
+    if first <= 0:
+        raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
+                          "none under a wedge (a tip at the pin has no tissue under it)",
+                          "the wedge thins to nothing at the pin and a tip sits there: "
+                          "a flat slab of tissue, or the pin moved off the tip")
+    least = MIN_LOCAL_THICKNESS_MM * last / first
+    step = 10.0 ** (math.floor(math.log10(least)) - 2)  # three digits, up: it works
+    least = float(f"{math.ceil(least / step * (1 - 1e-12)) * step:.3g}")
+    raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
+                      f"{least:g} ... {hi:g} mm (the wedge leaves at least "
+                      f"{MIN_LOCAL_THICKNESS_MM:g} mm of tissue under the tip nearest the "
+                      f"pin, {first:.4g} mm from it against {last:.4g} mm at the last tip; "
+                      "at most the open jaw's gap there)",
+                      f"a wedge {jaw.slab_thickness_mm:g} mm thick at the last tip leaves "
+                      f"{jaw.slab_thickness_mm * first / last:.3g} mm under the tip nearest "
+                      "the pin, thinner than the layer's resolution: give a thicker tissue")
 
 
 def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
@@ -199,7 +246,7 @@ def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickn
 
     def alone(p: Punch, h: float) -> float:
         return single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
-                                            float(round(h, 9)), base)
+                                            float(round(h, LAYER_THICKNESS_DECIMALS)), base)
 
     return np.array([alone(p, h) / alone(p, slab_thickness_mm) for p, h in zip(punches, t)])
 
@@ -712,6 +759,8 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
     if profile == "wedge":
         check_wedge_fits(jaw, float(np.max(tips.radius_mm)))
     local = thickness if profile != "slab" and coupling == "layer" else None
+    if local is not None:  # the layer under each tip: none may round to nothing
+        check_wedge_thick_enough(jaw, tips.radius_mm)
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
                           local_thickness_mm=local, base=base)
     # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher; the
