@@ -304,6 +304,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.options import grasp_option_error
     from tactcad.in_use.grasp_experiment import (kobj_range_warning, overload_warning,
                                                  overloaded_sites, with_kobj_range)
+    from tactcad.studies.grasp_report import with_grasp_deprecated_keys
 
     planned = _planned(design, args)
     plan = planned.plan
@@ -338,7 +339,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     result = with_kobj_range(result, (lo, hi))
     warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)), overload_warning(result)) if w]
     record = {"design": str(design), "die": plan.name,
-              "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings,
+              "kobj_range_N_per_mm": [lo, hi], "warnings": warnings,
               # a beam past its breaking force: the grasp does not pass (exit 1)
               "passed": not overloaded_sites(result.tips),
               "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": mount.jaw_length_mm,
@@ -361,6 +362,8 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                           "overload_limit_N": "each beam's root at the mean strength of "
                                               "etched silicon bars (no Weibull modulus)",
                           "error": error_words(args.coupling)}}
+    # the old name of the K_obj range beside the glossary's, as the metal grasp writes it
+    record = with_grasp_deprecated_keys(record)
     return record, grasp_lines(plan, record, result)
 
 
