@@ -757,7 +757,8 @@ class Project:
             force_N, angle_deg: the grasp force (N, 1e-6 <= F <= 1000: ``MIN_GRASP_FORCE_N`` of
                 :mod:`tactcad.studies.grasp_report` and up) or the closing angle
                 (degrees, 0 ... the jaw's opening); at most one.
-            kobj: the tissue's true stiffness under one tip (N/mm).
+            kobj: the tissue's true stiffness under one tip (N/mm, 1e-6 ... 1e4: the K_obj
+                a design file's range may state).
             coupling: ``layer``, ``halfspace`` or ``none``. profile: ``wedge`` or ``slab``.
             pivot_mm: the pin (X, Y) from the first tip (mm). pin_to_tip_mm, opening_deg,
                 slab_thickness_mm, lead_channel_mm: the jaw's sizes and the tissue's (mm,

@@ -201,7 +201,7 @@ def test_a_kobj_outside_the_designs_range_is_warned_and_not_read():
     warning = next(line for line in lines if line.startswith("warning:"))
     assert "--kobj 1000 N/mm" in warning and "K_obj range" in warning
     d = json.loads(run_cli("grasp", "--design", COMB, "--kobj", "1000", "--json").stdout)
-    lo, hi = d["K_obj_range_N_per_mm"]
+    lo, hi = d["kobj_range_N_per_mm"]
     assert f"{lo:g} ... {hi:g} N/mm" in warning
     assert not any(u["reads"] for u in d["as_laid_out"]["units"])
     assert all("outside the design's range" in u["out_of_range"]

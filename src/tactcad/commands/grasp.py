@@ -75,8 +75,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "reaches the far tips only once the near ones are on their stops; "
                         "default %(default)s)")
     p.add_argument("--kobj", type=ranged("kobj"), default=None,
-                   help="the tissue's true local stiffness under one tip (N/mm; default the "
-                        "geometric mean of the requirements' K_obj range)")
+                   help="the tissue's true local stiffness under one tip (N/mm, 1e-06 ... "
+                        "10000: a softer tissue is lost in the elements' K, its readings "
+                        "round-off; default the geometric mean of the requirements' K_obj "
+                        "range)")
     p.add_argument("--pivot-mm", type=ranged("pivot_mm"), nargs=2, metavar=("X", "Y"),
                    default=None,
                    help="the pin in the insert's frame (mm): X along the rows, Y across them, "

@@ -89,6 +89,33 @@ DEFAULT_OPENING_DEG = 60.0
 DEFAULT_JAW_BEYOND_MM = 2.0
 
 
+def check_kobj(k_obj_N_per_mm: float) -> None:
+    """Refuse a tissue K_obj the grasp cannot read: outside the K_obj a design file's range
+    may state (:data:`tactcad.design.requirements_section.MIN_KOBJ_N_PER_MM` ...
+    ``MAX_KOBJ_N_PER_MM``). Far below the least the tissue is lost in the elements' K (K +
+    K_obj rounds to K): a unit's K_obj read is round-off (on the 10 mm grasper's comb at
+    1e-30 N/mm it reads 1e-15 N/mm), and at 1e-200 N/mm the unit's true K_obj, the
+    geometric mean of its two tips', underflows to 0.
+
+    Args:
+        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm).
+
+    Raises:
+        DesignError: not a finite number in the range, as the field ``k_obj_N_per_mm``
+            (a command names its ``--kobj``, the API its ``kobj``).
+    """
+    from tactcad.design.requirements_section import MAX_KOBJ_N_PER_MM, MIN_KOBJ_N_PER_MM
+
+    ok = (isinstance(k_obj_N_per_mm, (int, float)) and not isinstance(k_obj_N_per_mm, bool)
+          and math.isfinite(k_obj_N_per_mm)
+          and MIN_KOBJ_N_PER_MM <= k_obj_N_per_mm <= MAX_KOBJ_N_PER_MM)
+    if not ok:
+        raise DesignError("k_obj_N_per_mm", k_obj_N_per_mm,
+                          f"{MIN_KOBJ_N_PER_MM:g} ... {MAX_KOBJ_N_PER_MM:g} N/mm",
+                          "a softer tissue is lost in the elements' stiffness: its readings "
+                          "would be round-off")
+
+
 def tissue_compliance(punches: list[Punch], k_obj_N_per_mm: float, slab_thickness_mm: float,
                       coupling: str = "layer",
                       poisson_ratio: float = TISSUE_POISSON_RATIO,
@@ -145,7 +172,8 @@ def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local
     different thicknesses the slab's coupling is kept, scaled by each face's own softening,
     C_ij = C_ij(slab) sqrt(s_i s_j) (:func:`local_softening`; an approximation, small
     where such faces are far apart), all on the one ``base``."""
-    t = np.round(np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),)), 9)
+    t = np.round(np.broadcast_to(np.asarray(local_thickness_mm, float), (len(punches),)),
+                 LAYER_THICKNESS_DECIMALS)
     s = local_softening(punches, slab_thickness_mm, t, poisson_ratio, base)
     out = slab_unit * np.sqrt(np.outer(s, s))
     for h in np.unique(t):
@@ -153,6 +181,52 @@ def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local
         out[np.ix_(group, group)] = unit_punch_compliance([punches[i] for i in group],
                                                           poisson_ratio, float(h), base)
     return out
+
+
+#: The layer's thickness under each tip is solved to this many decimals (mm): faces on one
+#: thickness to 1e-9 mm are solved together (:func:`local_layer_compliance`), and a tip on
+#: less than half of it would sit on no tissue.
+LAYER_THICKNESS_DECIMALS = 9
+#: The thinnest tissue under a tip the layer takes (mm): :data:`LAYER_THICKNESS_DECIMALS`.
+MIN_LOCAL_THICKNESS_MM = 10.0 ** -LAYER_THICKNESS_DECIMALS
+
+
+def check_wedge_thick_enough(jaw: JawGeometry, radius_mm) -> None:
+    """The wedge of the jaw's slab thickness (at the last tip) leaves at least
+    :data:`MIN_LOCAL_THICKNESS_MM` of tissue under the tip nearest the pin (the wedge's
+    thickness h r / r_last): a thinner wedge's tissue there rounds to nothing.
+
+    Args:
+        jaw: the jaw and its ``slab_thickness_mm`` (mm).
+        radius_mm: each tip's radius from the pin (mm), shape (m,).
+
+    Raises:
+        DesignError: ``jaw.slab_thickness_mm`` thinner than that, named with the range
+            that works (its least rounded up; at most the open jaw's gap at the last tip,
+            :func:`check_wedge_fits`) so that a command names its ``--slab-thickness-mm``.
+    """
+    r = np.asarray(radius_mm, float)
+    first, last = float(r.min()), float(r.max())
+    if jaw.slab_thickness_mm * first / last >= MIN_LOCAL_THICKNESS_MM * (1 - 1e-9):
+        return
+    gap = math.floor(last * math.sin(math.radians(jaw.opening_angle_deg)) * 1e3) / 1e3
+    hi = min(gap, 100.0)
+    if first <= 0:
+        raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
+                          "none under a wedge (a tip at the pin has no tissue under it)",
+                          "the wedge thins to nothing at the pin and a tip sits there: "
+                          "a flat slab of tissue, or the pin moved off the tip")
+    least = MIN_LOCAL_THICKNESS_MM * last / first
+    step = 10.0 ** (math.floor(math.log10(least)) - 2)  # three digits, up: it works
+    least = float(f"{math.ceil(least / step * (1 - 1e-12)) * step:.3g}")
+    raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
+                      f"{least:g} ... {hi:g} mm (the wedge leaves at least "
+                      f"{MIN_LOCAL_THICKNESS_MM:g} mm of tissue under the tip nearest the "
+                      f"pin, {first:.4g} mm from it against {last:.4g} mm at the last tip; "
+                      "at most the open jaw's gap there)",
+                      f"a wedge {jaw.slab_thickness_mm:g} mm thick at the last tip leaves "
+                      f"{jaw.slab_thickness_mm * first / last:.3g} mm under the tip nearest "
+                      "the pin, thinner than the layer's resolution: give a thicker tissue")
 
 
 def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
@@ -172,7 +246,7 @@ def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickn
 
     def alone(p: Punch, h: float) -> float:
         return single_punch_unit_compliance(p.width_x_mm, p.depth_z_mm, poisson_ratio,
-                                            float(round(h, 9)), base)
+                                            float(round(h, LAYER_THICKNESS_DECIMALS)), base)
 
     return np.array([alone(p, h) / alone(p, slab_thickness_mm) for p, h in zip(punches, t)])
 
@@ -685,6 +759,8 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
     if profile == "wedge":
         check_wedge_fits(jaw, float(np.max(tips.radius_mm)))
     local = thickness if profile != "slab" and coupling == "layer" else None
+    if local is not None:  # the layer under each tip: none may round to nothing
+        check_wedge_thick_enough(jaw, tips.radius_mm)
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
                           local_thickness_mm=local, base=base)
     # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher; the
@@ -801,7 +877,8 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
             :func:`tactcad.mechanics.evaluation.ladder_stiffness_by_element`.
         units: the design's (reference, measuring) element numbers
             (:func:`tactcad.mechanics.readout_chain.row_units`).
-        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm), > 0.
+        k_obj_N_per_mm: the tissue's true local stiffness under one tip (N/mm),
+            :func:`check_kobj`'s range (1e-06 ... 10000).
         rated_force_N: each element's rated full-scale force (N), > 0.
         angle_deg: the closing angle (degrees), 0 ... the jaw's opening; or
         force_N: the grasp force (N) the tips put on the slab, > 0 (each layout finds its angle).
@@ -824,6 +901,7 @@ def grasp(plan: Plan, jaw: JawGeometry, stiffness: dict[int, float], units: list
     """
     if (angle_deg is None) == (force_N is None):
         raise DesignError("angle_deg / force_N", (angle_deg, force_N), "exactly one of them")
+    check_kobj(k_obj_N_per_mm)
     if force_N is not None and not (math.isfinite(force_N) and force_N > 0):
         raise DesignError("force_N", force_N, "> 0 N")
     if not (math.isfinite(rated_force_N) and rated_force_N > 0):

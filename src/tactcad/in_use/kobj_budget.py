@@ -1244,11 +1244,21 @@ DEPRECATED_KEYS = {"stack_crosstalk": "crosstalk",
                    "stack_crosstalk_basis": "crosstalk_basis"}
 
 
-def with_deprecated_keys(mapping: dict) -> dict:
-    """``mapping`` (a unit's ``sources``, the ``notes``) with each old key of
-    :data:`DEPRECATED_KEYS` whose new key it holds added after its own keys, the same value;
-    a new dict, ``mapping`` unchanged."""
-    return {**mapping, **{old: mapping[new] for old, new in DEPRECATED_KEYS.items()
+def with_deprecated_keys(mapping: dict, renamed: Mapping[str, str] | None = None) -> dict:
+    """``mapping`` (a unit's ``sources``, the ``notes``; another record's top level) with
+    each old key of ``renamed`` whose new key it holds added after its own keys, the same
+    value; a new dict, ``mapping`` unchanged.
+
+    Args:
+        mapping: the record (or part of it) written under the new keys.
+        renamed: old key -> new key (None: the budget's :data:`DEPRECATED_KEYS`); the
+            record lists it as its ``deprecated_keys``.
+
+    Returns:
+        The record with the deprecated duplicates.
+    """
+    renamed = DEPRECATED_KEYS if renamed is None else renamed
+    return {**mapping, **{old: mapping[new] for old, new in renamed.items()
                           if new in mapping}}
 
 

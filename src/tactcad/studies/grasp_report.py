@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from tactcad.design.requirements_section import MAX_KOBJ_N_PER_MM, MIN_KOBJ_N_PER_MM
 from tactcad.errors import DesignError
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_PROFILE,
@@ -34,12 +35,38 @@ GRASP_NUMBERS: dict[str, tuple[float, float, str, bool]] = {
     "angle_deg": (0.0, 90.0, "degrees", False),
     "force_N": (MIN_GRASP_FORCE_N, 1000.0, "N", False),
     "slab_thickness_mm": (0.0, 100.0, "mm", True),
-    "kobj": (0.0, 1e4, "N/mm", True),
+    # the K_obj a design file's range may state: far below it the tissue is lost in the
+    # elements' K (K + K_obj rounds to K) and the grasp's readings are round-off
+    "kobj": (MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, "N/mm", False),
     "pivot_mm": (-500.0, 500.0, "mm", False),
     "pin_to_tip_mm": (1.0, 200.0, "mm", False),
     "opening_deg": (0.0, 90.0, "degrees", True),
     "lead_channel_mm": (0.0, 50.0, "mm", True),
 }
+
+
+#: The grasp record's renamed keys, old -> new: the design's K_obj range is
+#: ``kobj_range_N_per_mm``, as ``budget --json``, ``verify --json`` and the design file
+#: name it. The old key is still written beside the new one with the same value, and the
+#: record lists this mapping as ``deprecated_keys`` (the budget's mechanism,
+#: :func:`tactcad.in_use.kobj_budget.with_deprecated_keys`); it goes in a later release.
+GRASP_DEPRECATED_KEYS = {"K_obj_range_N_per_mm": "kobj_range_N_per_mm"}
+
+
+def with_grasp_deprecated_keys(record: dict) -> dict:
+    """A grasp record (a metal design's or a die's) with the old name of each renamed key
+    beside the new one (:data:`GRASP_DEPRECATED_KEYS`) and ``deprecated_keys`` listing them.
+
+    Args:
+        record: the record, written under the new keys.
+
+    Returns:
+        A new dict; ``record`` unchanged.
+    """
+    from tactcad.in_use.kobj_budget import with_deprecated_keys
+
+    return {**with_deprecated_keys(record, GRASP_DEPRECATED_KEYS),
+            "deprecated_keys": dict(GRASP_DEPRECATED_KEYS)}
 
 
 @dataclass(frozen=True)
@@ -80,7 +107,9 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
 
     Returns:
         The jaw, each layout's tips and units (``as_laid_out``, ``paired``,
-        ``along_rows``), the leads, ``warnings`` (a K_obj outside the range, an element past
+        ``along_rows``), the leads, the design's ``kobj_range_N_per_mm`` (N/mm; also under
+        its deprecated name, :data:`GRASP_DEPRECATED_KEYS`, listed in ``deprecated_keys``),
+        ``warnings`` (a K_obj outside the range, an element past
         its overload limit), ``passed`` (False where the design's own layout overloads an
         element) and ``reasons`` (where each default comes from).
 
@@ -152,8 +181,9 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
     # an element past its overload limit in the design's own layout (the grasp the hardware
     # makes damages it) or leads the shaft cannot take: a result that does not pass
     passed = not overloaded_sites(result.as_laid_out.tips) and leads.fits
-    return {**result.as_json(), "model": asked.model, "leads": leads.as_json(),
-            "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings, "passed": passed,
+    return with_grasp_deprecated_keys({
+            **result.as_json(), "model": asked.model, "leads": leads.as_json(),
+            "kobj_range_N_per_mm": [lo, hi], "warnings": warnings, "passed": passed,
             "reasons": {
                 "rated_force_N": req.reasons["full_scale_force_N"],
                 "overload_limit_N": "each element's yield with the design's safety factor "
@@ -180,7 +210,7 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
                 "tissue_base": (stated_table_words(plan, "tissue_slab") if stated and
                                 "base" in (plan.raw.get("tissue_slab") or {}) else
                                 f"{DEFAULT_TISSUE_BASE}, assumed: tissue gripped on the jaw's "
-                                "face does not slip on it")}}
+                                "face does not slip on it")}})
 
 
 def leads_warning(leads, channel_why: str) -> str | None:

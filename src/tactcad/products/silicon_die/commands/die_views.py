@@ -304,6 +304,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.commands.options import grasp_option_error
     from tactcad.in_use.grasp_experiment import (kobj_range_warning, overload_warning,
                                                  overloaded_sites, with_kobj_range)
+    from tactcad.studies.grasp_report import with_grasp_deprecated_keys
 
     planned = _planned(design, args)
     plan = planned.plan
@@ -338,7 +339,7 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     result = with_kobj_range(result, (lo, hi))
     warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)), overload_warning(result)) if w]
     record = {"design": str(design), "die": plan.name,
-              "K_obj_range_N_per_mm": [lo, hi], "warnings": warnings,
+              "kobj_range_N_per_mm": [lo, hi], "warnings": warnings,
               # a beam past its breaking force: the grasp does not pass (exit 1)
               "passed": not overloaded_sites(result.tips),
               "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": mount.jaw_length_mm,
@@ -361,6 +362,8 @@ def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
                           "overload_limit_N": "each beam's root at the mean strength of "
                                               "etched silicon bars (no Weibull modulus)",
                           "error": error_words(args.coupling)}}
+    # the old name of the K_obj range beside the glossary's, as the metal grasp writes it
+    record = with_grasp_deprecated_keys(record)
     return record, grasp_lines(plan, record, result)
 
 
@@ -381,21 +384,40 @@ def reads_why(unit: dict) -> str:
     return "; ".join(filter(None, [unit["why"], unit["out_of_range"]]))
 
 
+def per_unit_true(units: list[dict], k_obj_N_per_mm: float) -> bool:
+    """Whether a unit's true K_obj differs from the grasp's one K_obj (N/mm; beyond 1e-9
+    relative): under the wedge on the layer each unit is judged against its posts' own.
+
+    Args:
+        units: the grasp's unit records (``K_obj_true_N_per_mm``).
+        k_obj_N_per_mm: the K_obj the grasp was asked with (N/mm).
+
+    Returns:
+        True where any unit's true K_obj is its own.
+    """
+    return any(abs(u["K_obj_true_N_per_mm"] / k_obj_N_per_mm - 1) > 1e-9 for u in units)
+
+
 def grasp_lines(plan, record: dict, result) -> list[str]:
-    """The die's grasp as text: the jaw and tissue, each unit's reading, each post's force."""
+    """The die's grasp as text: the jaw and tissue, each unit's reading against its true
+    K_obj and R (the columns ``K_obj true`` and ``R true``, as an array's grasp table has
+    them), each post's force."""
     jaw = record["jaw"]
     um = 1e3
     lines = [f"die {plan.name} in its jaw: jaw {jaw['jaw_length_mm']:g} mm, pin at "
              f"{jaw['pin_x_mm']:g} mm from the heel, pin to tip {jaw['pin_to_tip_mm']:.4g} mm, "
              f"{jaw['opening_angle_deg']:g} degrees open, {record['profile']} of tissue "
              f"{jaw['slab_thickness_mm']:g} mm thick, K_obj {record['K_obj_N_per_mm']:.4g} N/mm "
-             f"(tissue coupling: {record['coupling']})",
+             f"(tissue coupling: {record['coupling']})"
+             + ("; each unit's error is against its own true K_obj (K_obj true: its two "
+                "posts' tissue, thinner under the wedge and so stiffer)"
+                if per_unit_true(result.units, record["K_obj_N_per_mm"]) else ""),
              f"closed to {result.angle_deg:.4g} degrees: grasp force "
              f"{result.total_force_N:.4g} N ({record['reasons']['force_N']})",
              *record["warnings"],
-             "| unit | radius mm | travel r/m um | deflection r/m um | R read | K_obj read | "
-             "error | corrected | error | reads |", "| --- | --- | --- | --- | --- | --- | --- "
-             "| --- | --- | --- |"]
+             "| unit | radius mm | travel r/m um | deflection r/m um | K_obj true | R true | "
+             "R read | K_obj read | error | corrected | error | reads |",
+             "| --- |" + " --- |" * 11]
 
     def pct(v):
         return "n/a" if v is None else f"{100 * v:+.1f} %"
@@ -407,7 +429,9 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
         lines.append(f"| {u['unit']} | {u['r_reference_mm']:.3f} | "
                      f"{um * u['travel_reference_mm']:.3g} / {um * u['travel_measuring_mm']:.3g} | "
                      f"{um * u['deflection_reference_mm']:.3g} / "
-                     f"{um * u['deflection_measuring_mm']:.3g} | {num(u['R_read'])} | "
+                     f"{um * u['deflection_measuring_mm']:.3g} | "
+                     f"{num(u['K_obj_true_N_per_mm'])} | {num(u['R_true'])} | "
+                     f"{num(u['R_read'])} | "
                      f"{num(u['K_obj_read_N_per_mm'])} | {pct(u['error_rel'])} | "
                      f"{num(u['K_obj_corrected_N_per_mm'])} | {pct(u['error_corrected_rel'])} | "
                      f"{'yes' if u['reads'] else reads_why(u)} |")

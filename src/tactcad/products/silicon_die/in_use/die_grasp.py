@@ -38,7 +38,7 @@ import numpy as np
 from tactcad.products.silicon_die.design.die_mount import DieMount
 from tactcad.products.silicon_die.design.mems_die import BOSCH_MEAN_STRENGTH_MPA, DiePlan
 from tactcad.in_use.grasp_experiment import (DEFAULT_PROFILE, DEFAULT_SLAB_MM, LayoutGrasp, Tips,
-                                             grasp_layout)
+                                             check_kobj, grasp_layout)
 from tactcad.in_use.jaw_kinematics import JawGeometry
 from tactcad.mechanics.contact import Punch
 
@@ -105,7 +105,8 @@ def die_grasp(plan: DiePlan, mount: DieMount, jaw: JawGeometry, k_obj_N_per_mm: 
     Args:
         plan, mount: the die and its place in the jaw.
         jaw: :func:`die_jaw`.
-        k_obj_N_per_mm: the tissue's true local stiffness under one post alone (N/mm), > 0.
+        k_obj_N_per_mm: the tissue's true local stiffness under one post alone (N/mm),
+            1e-06 ... 10000 (:func:`tactcad.in_use.grasp_experiment.check_kobj`).
         coupling: ``layer``, ``halfspace`` or ``none``; profile: ``wedge`` or ``slab``.
 
     Raises:
@@ -116,9 +117,7 @@ def die_grasp(plan: DiePlan, mount: DieMount, jaw: JawGeometry, k_obj_N_per_mm: 
 
     if (angle_deg is None) == (force_N is None):
         raise DesignError("angle_deg / force_N", (angle_deg, force_N), "exactly one of them")
-    if not (isinstance(k_obj_N_per_mm, (int, float)) and math.isfinite(k_obj_N_per_mm)
-            and k_obj_N_per_mm > 0):
-        raise DesignError("k_obj_N_per_mm", k_obj_N_per_mm, "> 0 N/mm")
+    check_kobj(k_obj_N_per_mm)
     return with_face_contact(grasp_layout(
         "as laid out", die_tips(plan, mount), die_units(plan), jaw, float(k_obj_N_per_mm),
         coupling, plan.full_scale_force_N, angle_deg, force_N, profile), mount.post_proud_mm)
