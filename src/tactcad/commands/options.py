@@ -391,7 +391,10 @@ def grasp_option_error(exc, args: Any):
         return exc
     given = getattr(args, option.removeprefix("--").replace("-", "_"), None)
     value = list(given) if isinstance(given, (list, tuple)) else exc.value
-    return DesignError(option, value, exc.allowed, exc.why, alternatives=exc.alternatives)
+    why = exc.why
+    if given is None and exc.field == "jaw.slab_thickness_mm":  # the grasp's own default
+        why = (f"{why}; " if why else "") + f"{option} not given: {exc.value:g} mm is its default"
+    return DesignError(option, value, exc.allowed, why, alternatives=exc.alternatives)
 
 
 def unsettled_slab_error(exc, given_mm: float | None):

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Sequence
 
 import numpy as np
 
@@ -189,16 +190,70 @@ def local_layer_compliance(punches: list[Punch], slab_thickness_mm: float, local
 LAYER_THICKNESS_DECIMALS = 9
 #: The thinnest tissue under a tip the layer takes (mm): :data:`LAYER_THICKNESS_DECIMALS`.
 MIN_LOCAL_THICKNESS_MM = 10.0 ** -LAYER_THICKNESS_DECIMALS
+#: The thinnest layer, over the tip face's shorter edge, on which the punch solves converge
+#: (:func:`tactcad.mechanics.contact.converged_punches`, nu 0.5 on a bonded base): at a
+#: tenth every face measured (0.2 x 0.2 to 0.5 x 2 mm) converged to its 0.1 %; at a
+#: twentieth the extrapolations still moved 0.3-0.5 %, at 0.03 by 3-270 %, and below it a
+#: face's compliance came out negative (the thin incompressible layer's displacement is the
+#: small difference of two large ones the cells no longer resolve).
+MIN_LAYER_OVER_FACE = 0.1
 
 
-def check_wedge_thick_enough(jaw: JawGeometry, radius_mm) -> None:
+def least_layer_mm(punches: Sequence[Punch]) -> float:
+    """The thinnest tissue the contact solves take under any of ``punches`` (mm):
+    :data:`MIN_LAYER_OVER_FACE` of the smallest face edge, and at least
+    :data:`MIN_LOCAL_THICKNESS_MM`.
+
+    Args:
+        punches: the tip faces (:class:`~tactcad.mechanics.contact.Punch`, mm); none: the
+            layer's resolution alone.
+
+    Returns:
+        The least thickness (mm).
+    """
+    edges = [min(p.width_x_mm, p.depth_z_mm) for p in punches]
+    return max(MIN_LOCAL_THICKNESS_MM, MIN_LAYER_OVER_FACE * min(edges, default=0.0))
+
+
+def check_layer_thick_enough(jaw: JawGeometry, punches: Sequence[Punch]) -> None:
+    """A flat slab of tissue coupled as one layer is at least :func:`least_layer_mm` thick.
+
+    Args:
+        jaw: the jaw and its ``slab_thickness_mm`` (mm). punches: the tip faces (mm).
+
+    Raises:
+        DesignError: ``jaw.slab_thickness_mm`` thinner, named with the range that works (its
+            least rounded up), so that a command names its ``--slab-thickness-mm``.
+    """
+    least = least_layer_mm(punches)
+    if jaw.slab_thickness_mm >= least * (1 - 1e-9):
+        return
+    least = _rounded_up(least)
+    raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
+                      f"{least:g} ... 100 mm (at least {MIN_LAYER_OVER_FACE:g} of the smallest "
+                      "tip face's edge, where the tissue layer's contact solves converge)",
+                      f"a layer {jaw.slab_thickness_mm:g} mm thick under tip faces of "
+                      f"{least / MIN_LAYER_OVER_FACE:.3g} mm is thinner than the contact "
+                      "model resolves: give a thicker tissue")
+
+
+def _rounded_up(x: float) -> float:
+    """``x`` rounded up to three significant digits."""
+    step = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float(f"{math.ceil(x / step * (1 - 1e-12)) * step:.3g}")
+
+
+def check_wedge_thick_enough(jaw: JawGeometry, radius_mm,
+                             punches: Sequence[Punch] = ()) -> None:
     """The wedge of the jaw's slab thickness (at the last tip) leaves at least
-    :data:`MIN_LOCAL_THICKNESS_MM` of tissue under the tip nearest the pin (the wedge's
-    thickness h r / r_last): a thinner wedge's tissue there rounds to nothing.
+    :func:`least_layer_mm` of tissue under the tip nearest the pin (the wedge's
+    thickness h r / r_last): on a thinner wedge the contact solves there do not converge
+    (or its tissue rounds to nothing).
 
     Args:
         jaw: the jaw and its ``slab_thickness_mm`` (mm).
         radius_mm: each tip's radius from the pin (mm), shape (m,).
+        punches: the tip faces (mm); none: the layer's resolution alone.
 
     Raises:
         DesignError: ``jaw.slab_thickness_mm`` thinner than that, named with the range
@@ -207,7 +262,8 @@ def check_wedge_thick_enough(jaw: JawGeometry, radius_mm) -> None:
     """
     r = np.asarray(radius_mm, float)
     first, last = float(r.min()), float(r.max())
-    if jaw.slab_thickness_mm * first / last >= MIN_LOCAL_THICKNESS_MM * (1 - 1e-9):
+    floor = least_layer_mm(punches)
+    if jaw.slab_thickness_mm * first / last >= floor * (1 - 1e-9):
         return
     gap = math.floor(last * math.sin(math.radians(jaw.opening_angle_deg)) * 1e3) / 1e3
     hi = min(gap, 100.0)
@@ -216,17 +272,16 @@ def check_wedge_thick_enough(jaw: JawGeometry, radius_mm) -> None:
                           "none under a wedge (a tip at the pin has no tissue under it)",
                           "the wedge thins to nothing at the pin and a tip sits there: "
                           "a flat slab of tissue, or the pin moved off the tip")
-    least = MIN_LOCAL_THICKNESS_MM * last / first
-    step = 10.0 ** (math.floor(math.log10(least)) - 2)  # three digits, up: it works
-    least = float(f"{math.ceil(least / step * (1 - 1e-12)) * step:.3g}")
+    least = _rounded_up(floor * last / first)  # three digits, up: it works
     raise DesignError("jaw.slab_thickness_mm", jaw.slab_thickness_mm,
                       f"{least:g} ... {hi:g} mm (the wedge leaves at least "
-                      f"{MIN_LOCAL_THICKNESS_MM:g} mm of tissue under the tip nearest the "
-                      f"pin, {first:.4g} mm from it against {last:.4g} mm at the last tip; "
-                      "at most the open jaw's gap there)",
+                      f"{floor:.3g} mm of tissue under the tip nearest the "
+                      f"pin, {first:.4g} mm from it against {last:.4g} mm at the last tip, "
+                      "where the contact solves converge; at most the open jaw's gap there)",
                       f"a wedge {jaw.slab_thickness_mm:g} mm thick at the last tip leaves "
                       f"{jaw.slab_thickness_mm * first / last:.3g} mm under the tip nearest "
-                      "the pin, thinner than the layer's resolution: give a thicker tissue")
+                      "the pin, thinner than the contact model resolves: give a thicker "
+                      "tissue")
 
 
 def local_softening(punches: list[Punch], slab_thickness_mm: float, local_thickness_mm,
@@ -759,8 +814,10 @@ def grasp_layout(name: str, tips: Tips, units: list[tuple[int, int]], jaw: JawGe
     if profile == "wedge":
         check_wedge_fits(jaw, float(np.max(tips.radius_mm)))
     local = thickness if profile != "slab" and coupling == "layer" else None
-    if local is not None:  # the layer under each tip: none may round to nothing
-        check_wedge_thick_enough(jaw, tips.radius_mm)
+    if local is not None:  # the layer under each tip: thick enough for its contact solves
+        check_wedge_thick_enough(jaw, tips.radius_mm, tips.punches)
+    elif coupling == "layer":
+        check_layer_thick_enough(jaw, tips.punches)
     c = tissue_compliance(tips.punches, k_obj, jaw.slab_thickness_mm, coupling,
                           local_thickness_mm=local, base=base)
     # one modulus along the jaw: where the tissue is thinner, its true K_obj is higher; the
