@@ -1262,6 +1262,26 @@ def with_deprecated_keys(mapping: dict, renamed: Mapping[str, str] | None = None
                           if new in mapping}}
 
 
+#: The K_obj range's key before it took the glossary's name (``grasp --json`` and
+#: ``tolerance --json``, an array's and a die's, wrote it): kept beside the new one for now.
+KOBJ_RANGE_RENAMED = {"K_obj_range_N_per_mm": "kobj_range_N_per_mm"}
+
+
+def with_declared_deprecated_keys(record: dict, renamed: Mapping[str, str]) -> dict:
+    """A record's top level with the old name of each renamed key beside the new one
+    (:func:`with_deprecated_keys`) and ``deprecated_keys`` listing the renames (with any it
+    lists already).
+
+    Args:
+        record: the record, written under the new keys. renamed: old key -> new key.
+
+    Returns:
+        A new dict; ``record`` unchanged.
+    """
+    return {**with_deprecated_keys(record, renamed),
+            "deprecated_keys": {**record.get("deprecated_keys", {}), **renamed}}
+
+
 # ---------------------------------------------------------------------------
 # The budget
 # ---------------------------------------------------------------------------

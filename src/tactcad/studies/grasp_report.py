@@ -50,7 +50,7 @@ GRASP_NUMBERS: dict[str, tuple[float, float, str, bool]] = {
 #: name it. The old key is still written beside the new one with the same value, and the
 #: record lists this mapping as ``deprecated_keys`` (the budget's mechanism,
 #: :func:`tactcad.in_use.kobj_budget.with_deprecated_keys`); it goes in a later release.
-GRASP_DEPRECATED_KEYS = {"K_obj_range_N_per_mm": "kobj_range_N_per_mm"}
+GRASP_DEPRECATED_KEYS = {"K_obj_range_N_per_mm": "kobj_range_N_per_mm"}  # KOBJ_RANGE_RENAMED
 
 
 def with_grasp_deprecated_keys(record: dict) -> dict:
@@ -63,10 +63,9 @@ def with_grasp_deprecated_keys(record: dict) -> dict:
     Returns:
         A new dict; ``record`` unchanged.
     """
-    from tactcad.in_use.kobj_budget import with_deprecated_keys
+    from tactcad.in_use.kobj_budget import with_declared_deprecated_keys
 
-    return {**with_deprecated_keys(record, GRASP_DEPRECATED_KEYS),
-            "deprecated_keys": dict(GRASP_DEPRECATED_KEYS)}
+    return with_declared_deprecated_keys(record, GRASP_DEPRECATED_KEYS)
 
 
 @dataclass(frozen=True)

@@ -191,7 +191,8 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
 
     Returns:
         (the report, whose ``as_json()`` with the fields is ``tactcad tolerance --json``;
-        the fields ``design`` (its name), ``source``, ``K_obj_range_N_per_mm``, ``warnings``
+        the fields ``design`` (its name), ``source``, ``kobj_range_N_per_mm`` (also under its
+        deprecated name ``K_obj_range_N_per_mm``, listed in ``deprecated_keys``), ``warnings``
         (a ``kobj`` outside that range, as a die's record has them), ``tolerances_used``,
         ``k_tolerance_check``; the draw's wall time, s).
 
@@ -202,6 +203,7 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
     import time
 
     from tactcad.design.requirements_section import cites_paper
+    from tactcad.in_use.kobj_budget import KOBJ_RANGE_RENAMED, with_declared_deprecated_keys
     from tactcad.studies.design_loads import design_samples
     from tactcad.studies.tolerance_budget import band_check
     from tactcad.studies.tolerance_montecarlo import (DEFAULT_K_OBJ_N_PER_MM, Tolerances,
@@ -219,10 +221,10 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
     req = requirements_of(plan)
     check = band_check(plan, report, req.k_tolerance_rel)
     fields = {"design": plan.name, "source": "design",
-              "K_obj_range_N_per_mm": list(req.kobj_range_N_per_mm),
+              "kobj_range_N_per_mm": list(req.kobj_range_N_per_mm),
               "warnings": kobj_range_warnings(kobj or (), req.kobj_range_N_per_mm),
               "tolerances_used": tolerances_used(plan, tol), "k_tolerance_check": check}
-    return report, fields, wall
+    return report, with_declared_deprecated_keys(fields, KOBJ_RANGE_RENAMED), wall
 
 
 def kobj_range_warnings(kobj: Sequence[float], kobj_range: Sequence[float]) -> list[str]:

@@ -493,6 +493,7 @@ def _tolerance(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     import time
 
     from tactcad.in_use.grasp_experiment import kobj_range_warning
+    from tactcad.in_use.kobj_budget import KOBJ_RANGE_RENAMED, with_declared_deprecated_keys
     from tactcad.products.silicon_die.studies.die_tolerance import (DieTolerances,
                                                                     check_die_samples,
                                                                     report_lines,
@@ -507,9 +508,10 @@ def _tolerance(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]
     warnings = [w for w in (kobj_range_warning(k, plan.kobj_range_N_per_mm)
                             for k in (args.kobj or ())) if w]
     record = {"design": str(design), "die": plan.name, "source": "the die's process",
-              "K_obj_range_N_per_mm": list(plan.kobj_range_N_per_mm), "warnings": warnings,
+              "kobj_range_N_per_mm": list(plan.kobj_range_N_per_mm), "warnings": warnings,
               **report.as_json()}
-    return record, [*report_lines(plan.name, report, wall), *warnings]
+    return (with_declared_deprecated_keys(record, KOBJ_RANGE_RENAMED),
+            [*report_lines(plan.name, report, wall), *warnings])
 
 
 def _scenes(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
