@@ -136,3 +136,22 @@ def test_modal_fem3d_reads_the_die_commands_fem3d_and_keeps_it(die_folder, tmp_p
         mine = tactcad.load(die_folder / DIE_EXAMPLE.name).modes(model="fem3d")
     assert solved == ROLES * 2 and mine["reused"]
     assert [r["first_Hz"] for r in mine["rows"]] == [r["first_Hz"] for r in fem["rows"]]
+
+
+def test_die_fem3d_keeps_its_solves_where_modal_and_a_second_die_read_them(
+        die_folder, tmp_path, stand_in):
+    # `die --fem3d` had no store: it solved every time, and `modal --model fem3d` after it
+    # solved again
+    cache = tmp_path / "store"
+    first = run_cli("die", "--design", DIE_EXAMPLE.name, "--fem3d", "--cache", cache,
+                    "--out", "die1", "--json", cwd=die_folder)
+    assert first.returncode == 0, first.stdout + first.stderr
+    assert stand_in == ROLES
+    fem3d = {r["role"]: r for r in json.loads(first.stdout)["fem3d"]}
+    code, modal = _modal(die_folder, cache, "--model", "fem3d", "--json")
+    assert code == 0 and modal["reused"] and stand_in == ROLES, modal  # nothing solved
+    for row in modal["rows"]:
+        assert row["first_Hz"] == fem3d[row["role"]]["f1_Hz"]
+    again = run_cli("die", "--design", DIE_EXAMPLE.name, "--fem3d", "--cache", cache,
+                    "--out", "die2", "--json", cwd=die_folder)
+    assert again.returncode == 0 and stand_in == ROLES, again.stderr

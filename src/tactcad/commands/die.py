@@ -16,7 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
-from tactcad.commands import add_design_arg, add_output_args, progress_from_args
+from tactcad.commands import (add_cache_args, add_design_arg, add_output_args,
+                              progress_from_args)
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number, output_folder
 from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
@@ -91,6 +92,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "closed form's K and f1 error against it")
     p.add_argument("--out", default="die", metavar="DIR", type=output_folder,
                    help="folder for the masks and the record (default ./die)")
+    # the store every command reads: --fem3d's solves are kept there, so `modal --model fem3d`
+    # and `stiffness --model fem3d` read them, and a second `die --fem3d` solves nothing
+    add_cache_args(p)
     add_output_args(p, "print the plan and the checks as one JSON object")
     p.set_defaults(func=run_die_command)
 
