@@ -233,3 +233,33 @@ def test_a_bias_is_judged_with_its_error_against_the_resolution(bias, error, ver
     from tactcad.studies.verification import bias_verdict
 
     assert bias_verdict(bias, error, 0.0015) == verdict
+
+
+@pytest.mark.slow  # six converged layer solves
+@pytest.mark.parametrize("base", contact.BASES)
+@pytest.mark.parametrize("poisson_ratio", (0.3, 0.5))
+def test_a_layer_a_tenth_of_the_face_thick_converges_on_every_base(base, poisson_ratio):
+    """The grasp's thinnest tissue (``MIN_LAYER_OVER_FACE`` of the smallest tip face's edge)
+    was measured on a bonded incompressible layer, the hardest case; every base the design's
+    ``[tissue_slab]`` may state, compressible or not, converges there to the solver's 0.1 %,
+    with a positive compliance, so the floor holds for each of them."""
+    from tactcad.in_use.grasp_experiment import MIN_LAYER_OVER_FACE
+
+    width, depth = 0.5, 2.0
+    faces = [contact.Punch(0.0, 0.0, width, depth), contact.Punch(0.8, 0.0, width, depth)]
+    layer = contact.Sample(1.0, poisson_ratio, MIN_LAYER_OVER_FACE * width, base)
+    solved = contact.converged_punches(faces, layer)
+    assert solved.converged and solved.error_rel <= contact.CONVERGED_REL
+    assert np.all(np.diag(solved.compliance_mm_per_N) > 0)
+
+
+@pytest.mark.slow  # every mesh level the cell budget holds
+def test_half_the_floor_no_longer_converges_on_a_bonded_incompressible_layer():
+    """The floor is where the hardest case stops converging, not an arbitrary margin: at half
+    of it a bonded incompressible layer runs out of cells before two extrapolations agree."""
+    from tactcad.in_use.grasp_experiment import MIN_LAYER_OVER_FACE
+
+    width, depth = 0.5, 2.0
+    faces = [contact.Punch(0.0, 0.0, width, depth), contact.Punch(0.8, 0.0, width, depth)]
+    layer = contact.Sample(1.0, 0.5, 0.5 * MIN_LAYER_OVER_FACE * width, "bonded")
+    assert not contact.converged_punches(faces, layer).converged
