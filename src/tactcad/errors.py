@@ -159,6 +159,12 @@ class RepeatedOptionWarning(UserWarning):
     (a pasted alternative appended to the command line replaces the value before it)."""
 
 
+class RenamedOptionWarning(UserWarning):
+    """An option given by its earlier name (:func:`tactcad.commands.options.add_renamed_option`):
+    taken, and said renamed to its new name (a user's warning, not Python's
+    ``DeprecationWarning``, which a run drops)."""
+
+
 #: True while a command of the command line runs (:func:`tactcad.cli.dispatch`): the API's
 #: methods it calls keep their refusals in the command's option names, not their keyword
 #: arguments' (:func:`tactcad.api.keyword_errors`).

@@ -214,7 +214,7 @@ def verdict(point, product, feasible, force, span, res):
             "kobj_lo_N_per_mm": 1.0, "kobj_hi_N_per_mm": span, "full_scale_force_N": force,
             "columns": 4, "feasible": feasible, "binding_limit": "" if feasible else "stop",
             "binding_detail": "", "design_field": "", "kobj_resolution_rel": res,
-            "max_force_N": force, "f1_Hz": 1e3, "sheet_mm": 1.0, "layer_um": float("nan"),
+            "max_force_N": force, "lowest_first_Hz": 1e3, "sheet_mm": 1.0, "layer_um": float("nan"),
             "command": f"tactcad design --point {point}"}
 
 
@@ -279,7 +279,7 @@ def test_each_drawn_point_carries_its_figures_and_command_for_the_hover(tmp_path
                 "binding_limit": None if feasible else "strength",
                 "binding_detail": None if feasible else f"detail {i}",
                 "kobj_resolution_rel": 0.001 if feasible else math.nan,
-                "max_force_N": 1.0 if feasible else math.nan, "f1_Hz": 900.0,
+                "max_force_N": 1.0 if feasible else math.nan, "lowest_first_Hz": 900.0,
                 "sheet_mm": 1.0, "layer_um": math.nan, "command": f"tactcad design #{i}"}
 
     records = [record(0, True), record(1, False), record(2, True, "mems-die", "silicon"),
@@ -294,6 +294,50 @@ def test_each_drawn_point_carries_its_figures_and_command_for_the_hover(tmp_path
             assert "designed: K_obj resolution 0.10%" in mine and "f1 900 Hz" in mine
         else:
             assert f"refused (strength): detail {r['point']}" in mine
+
+
+def test_the_lowest_first_resonance_is_modals_lowest_first_Hz_in_table_and_summary(
+        tmp_path, monkeypatch):
+    """The atlas named a design's lowest first resonance ``f1_Hz`` where ``tactcad modal
+    --json`` names it ``lowest_first_Hz``: the table's column is renamed (schema 2, in its
+    metadata and in the store's key, so a table kept before is not taken for this one), a
+    table written before is read under the new name, and the summary's front points keep
+    the old key beside the new one, listed in ``deprecated_keys``."""
+    import pyarrow.parquet as pq
+
+    from tactcad.commands import atlas as atlas_cmd
+    from tactcad.studies import atlas_files
+
+    records = [verdict(0, "a", True, 1.0, 10.0, 0.1)]
+    atlas_cmd.write_table(tmp_path / "t.parquet", records, {"jaw": "10"})
+    table = pq.read_table(tmp_path / "t.parquet")
+    assert "lowest_first_Hz" in table.column_names and "f1_Hz" not in table.column_names
+    assert json.loads(table.schema.metadata[b"tactcad.atlas"])["schema"] == 2
+    old = [{("f1_Hz" if k == "lowest_first_Hz" else k): v for k, v in r.items()}
+           for r in records]  # a table of schema 1
+    pq.write_table(pa_table(old), tmp_path / "old.parquet")
+    [was], [now] = (atlas_cmd.read_table(tmp_path / n) for n in ("old.parquet", "t.parquet"))
+    assert list(was) == list(now) and was["lowest_first_Hz"] == now["lowest_first_Hz"] == 1e3
+    s = atlas_cmd.atlas_summary(records, {"jaw": "10", "points": 1, "seed": 0, "ranges": {},
+                                          "key": "k"}, 1.0, False, True, tmp_path)
+    assert s["deprecated_keys"] == {"f1_Hz": "lowest_first_Hz"}
+    for point in s["front"] + s["products"][0]["front"]:
+        assert point["lowest_first_Hz"] == point["f1_Hz"] == 1e3
+    # the store's key of the same atlas moves with the schema
+    from types import SimpleNamespace
+
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    atlas = SimpleNamespace(room=jaw_room("10"), products=(("m", "x"),))
+    key = atlas_cmd.atlas_key(atlas, [{"point": 0}])
+    monkeypatch.setattr(atlas_files, "ATLAS_SCHEMA", 1)
+    assert atlas_cmd.atlas_key(atlas, [{"point": 0}]) != key
+
+
+def pa_table(rows: list[dict]):
+    import pyarrow as pa
+
+    return pa.Table.from_pylist(rows)
 
 
 def test_without_batch_the_tasks_are_about_32_a_worker_thread_and_at_most_32_points():

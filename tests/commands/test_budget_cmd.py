@@ -189,24 +189,32 @@ def test_force_and_step_are_named_with_their_units_as_grasps_force_N():
                                              ("--delta-T", "--delta-T-K", "4")])
 def test_the_earlier_names_still_work_hidden_and_said_renamed_on_one_line(old, new, value):
     """--force and --delta-T, the earlier names: not in --help, still taken (the same
-    budget as the new name), and one line on stderr naming the new one; no Python
-    warning, no traceback."""
+    budget as the new name), and said renamed, naming the new one: one line on stderr,
+    none with --quiet, and with --json an entry of the JSON's ``warnings`` (stderr empty,
+    so stdout and stderr together are the JSON alone); no Python warning, no traceback."""
     import re
 
     assert not re.search(rf"{re.escape(old)}(?![-\w])", command_help("budget"))
     by_new = run_cli("budget", "--design", TI, "--points", "2", new, value, "--json")
     by_old = run_cli("budget", "--design", TI, "--points", "2", old, value, "--json")
     assert by_old.returncode == 0 == by_new.returncode, by_old.stdout + by_old.stderr
-    assert json.loads(by_old.stdout) == json.loads(by_new.stdout)
-    assert by_new.stderr == ""
-    lines = by_old.stderr.splitlines()
-    assert len(lines) == 1 and old in lines[0] and new in lines[0], by_old.stderr
-    assert "renamed" in lines[0] and lines[0].startswith("tactcad: warning: ")
-    assert "Traceback" not in by_old.stderr and "DeprecationWarning" not in by_old.stderr
-    # given twice: still one line; a bad value refused in the option's own name
-    twice = run_cli("budget", "--design", TI, "--points", "2", old, value, old, value,
-                    "--quiet")
+    said = json.loads(by_old.stdout)
+    renamed = [w for w in said["warnings"] if "renamed" in w]
+    assert len(renamed) == 1 and old in renamed[0] and new in renamed[0], said["warnings"]
+    assert {**said, "warnings": [w for w in said["warnings"] if w not in renamed]} == \
+        json.loads(by_new.stdout)
+    assert by_new.stderr == "" == by_old.stderr, by_old.stderr
+    text = run_cli("budget", "--design", TI, "--points", "2", old, value)
+    lines = [line for line in text.stderr.splitlines() if "renamed" in line]
+    assert text.returncode == 0 and len(lines) == 1, text.stderr  # beside the progress line
+    assert old in lines[0] and new in lines[0] and "renamed" in lines[0]
+    assert lines[0].startswith("tactcad: warning: ")
+    assert "Traceback" not in text.stderr and "DeprecationWarning" not in text.stderr
+    # given twice: still one line; with --quiet none; a bad value refused in its own name
+    twice = run_cli("budget", "--design", TI, "--points", "2", old, value, old, value)
     assert twice.returncode == 0 and twice.stderr.count("renamed") == 1, twice.stderr
+    quiet = run_cli("budget", "--design", TI, "--points", "2", old, value, "--quiet")
+    assert quiet.returncode == 0 and quiet.stderr == "", quiet.stderr
     bad = run_cli("budget", "--design", TI, old, "-1", "--json")
     assert bad.returncode == 2 and old in json.loads(bad.stdout)["error"]["message"]
 

@@ -25,7 +25,7 @@ def _record(point: int, force: float, lo: float, hi: float, feasible: bool,
             "binding_detail": "" if feasible else "failure probability above 0.001",
             "design_field": "" if feasible else "--full-scale-force",
             "kobj_resolution_rel": resolution if feasible else math.nan,
-            "max_force_N": 2 * force if feasible else math.nan, "f1_Hz": math.nan,
+            "max_force_N": 2 * force if feasible else math.nan, "lowest_first_Hz": math.nan,
             "sheet_mm": math.nan, "layer_um": 40.0 if feasible else math.nan,
             "command": f"tactcad design --jaw 5 --full-scale-force {force:g} --out p{point}.toml"}
 

@@ -124,11 +124,11 @@ def test_modal_fem3d_reads_the_die_commands_fem3d_and_keeps_it(die_folder, tmp_p
     assert [r["role"] for r in fem["rows"]] == ROLES
     for row in fem["rows"]:
         kept = by_role[row["role"]]
-        assert row["first_Hz"] == pytest.approx(kept["f1_Hz"], rel=1e-9)
-        assert row["first_Hz_error_rel"] == pytest.approx(kept["f1_error_rel"], rel=1e-6)
+        assert row["first_Hz"] == pytest.approx(kept["first_Hz"], rel=1e-9)
+        assert row["first_Hz_error_rel"] == pytest.approx(kept["first_Hz_error_rel"], rel=1e-6)
         assert row["dofs"] == kept["dofs"]
-        assert row["closed_form_error_rel"] == pytest.approx(kept["f1_closed_form_error_rel"],
-                                                             rel=1e-6)
+        assert row["closed_form_error_rel"] == pytest.approx(
+            kept["first_Hz_closed_form_error_rel"], rel=1e-6)
     code, again = _modal(die_folder, cache, "--model", "fem3d", "--json", "--quiet")
     assert code == 0 and solved == ROLES * 2 and again["reused"]
     assert [r["first_Hz"] for r in again["rows"]] == [r["first_Hz"] for r in fem["rows"]]
@@ -151,7 +151,51 @@ def test_die_fem3d_keeps_its_solves_where_modal_and_a_second_die_read_them(
     code, modal = _modal(die_folder, cache, "--model", "fem3d", "--json")
     assert code == 0 and modal["reused"] and stand_in == ROLES, modal  # nothing solved
     for row in modal["rows"]:
-        assert row["first_Hz"] == fem3d[row["role"]]["f1_Hz"]
+        assert row["first_Hz"] == fem3d[row["role"]]["first_Hz"]
     again = run_cli("die", "--design", DIE_EXAMPLE.name, "--fem3d", "--cache", cache,
                     "--out", "die2", "--json", cwd=die_folder)
     assert again.returncode == 0 and stand_in == ROLES, again.stderr
+
+
+def test_the_die_records_first_resonance_is_modals_first_Hz_the_old_keys_declared(
+        die_folder, tmp_path, stand_in):
+    """`tactcad die --fem3d --json` named each row's first resonance ``f1_Hz`` (its error
+    ``f1_error_rel``, the closed form's ``f1_closed_form_error_rel``) where `modal --json`
+    names it ``first_Hz``: the record writes modal's names, the same figures as modal's row,
+    and keeps the old keys beside them, the same values, listed in each row's
+    ``deprecated_keys``."""
+    cache = tmp_path / "store"
+    die = run_cli("die", "--design", DIE_EXAMPLE.name, "--fem3d", "--cache", cache, "--out",
+                  "die1", "--json", cwd=die_folder)
+    assert die.returncode == 0, die.stdout[-2000:] + die.stderr
+    record = json.loads(die.stdout)
+    renamed = {"f1_Hz": "first_Hz", "f1_error_rel": "first_Hz_error_rel",
+               "f1_closed_form_error_rel": "first_Hz_closed_form_error_rel"}
+    code, modal = _modal(die_folder, cache, "--model", "fem3d", "--json")
+    assert code == 0 and modal["reused"]
+    rows = {r["role"]: r for r in record["fem3d"]}
+    for row in modal["rows"]:
+        kept = rows[row["role"]]
+        assert (kept["first_Hz"], kept["first_Hz_error_rel"]) == \
+            (row["first_Hz"], row["first_Hz_error_rel"])
+        assert kept["first_Hz_closed_form_error_rel"] == pytest.approx(
+            row["closed_form_error_rel"], rel=1e-9)
+        assert kept["deprecated_keys"] == renamed
+        for old, new in renamed.items():
+            assert kept[old] == kept[new]
+
+
+def test_the_fe_checks_first_resonance_is_first_Hz_the_old_keys_declared_by_the_die():
+    """The CalculiX check's row names the first resonance as modal does (``fe_first_Hz``,
+    ``closed_form_first_Hz``; the closed form's error ``first_Hz_closed_form_error_rel``,
+    as the fem3d row names it); its old ``f1_`` names are the declared deprecated ones."""
+    from tactcad.in_use.kobj_budget import with_declared_deprecated_keys
+    from tactcad.products.silicon_die.mechanics.die_dynamics import FE_CHECK_RENAMED, FeCheck
+
+    row = FeCheck("reference", 10.0, 10.5, 2000.0, 2100.0).as_json()
+    assert (row["fe_first_Hz"], row["closed_form_first_Hz"]) == (2000.0, 2100.0)
+    assert row["first_Hz_closed_form_error_rel"] == pytest.approx(0.05, rel=1e-12)
+    assert not [k for k in row if k.startswith("f1")]
+    kept = with_declared_deprecated_keys(row, FE_CHECK_RENAMED)
+    assert all(kept[old] == row[new] for old, new in FE_CHECK_RENAMED.items())
+    assert kept["deprecated_keys"]["f1_error_rel"] == "first_Hz_closed_form_error_rel"

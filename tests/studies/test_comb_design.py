@@ -754,3 +754,42 @@ def test_another_grade_that_counts_is_offered_alone_and_one_that_carries_with_it
     assert str(refused).endswith(f"nearest: {pasted}") and "none to paste" not in str(refused)
     assert "no comb of 6061-T6 at any column count" in str(refused)
     assert (refused.field, refused.value) == ("--full-scale-force", 2.0)
+
+
+def test_the_refusal_offers_the_grade_with_the_most_margin_not_the_first_in_the_library(
+        monkeypatch):
+    """Two other grades carry the force: the library lists the one with less margin first.
+    The refusal offers the one with the larger margin on the full-scale force and says why
+    (each grade's margin), whatever the library's order; a grade that carries nothing is
+    left out, and the grade asked is not judged."""
+    from tactcad.studies import comb_design
+    from tactcad.vocabulary import material_library
+
+    first, best, none = "7075-T6", "Ti-6Al-4V-annealed", "17-4PH-H900"
+    margins = {first: (0.05, None), best: (0.40, None), none: None}
+    judged = []
+
+    def carried(base, columns, room, targets, grade, envelope_of):
+        judged.append(grade)
+        return margins[grade]
+
+    library = {g: None for g in ("6061-T6", first, none, best)}  # less margin listed first
+    monkeypatch.setattr(material_library, "material_grades", lambda: library)
+    monkeypatch.setattr(comb_design, "grade_carried", carried)
+    targets, room = Targets(20.0, (5.0, 50.0), 2.0), jaw_room("10")
+    offer = comb_design.nearest_grade(BASE, 2, room, targets, "6061-T6", array_envelope_mm)
+    assert judged == [first, none, best]  # every other grade, in the library's order
+    assert (offer.grade, offer.force_N) == (best, None)
+    assert "+40.0%" in offer.why and f"{first} +5.0%" in offer.why and none not in offer.why
+    tried = [comb_design.CombCandidate(0.5, 1.0, None, None, ("no web reaches K",), -math.inf,
+                                       None)]
+    refused = comb_design.refusal(tried, targets, room, 2, other_grade=offer,
+                                  grade_asked="6061-T6")
+    assert [a["option"] for a in refused.alternatives] == [f"--material {best}"]
+    assert offer.why in str(refused) and offer.why in refused.alternatives[0]["words"]
+    # a lighter force's margin ranks below one that counts, and among lighter forces the
+    # largest wins
+    lighter = comb_design.best_grade({first: (-0.5, 1.0), best: (-0.2, 1.6), none: (0.0, None)})
+    assert (lighter.grade, lighter.force_N) == (none, None)
+    assert comb_design.best_grade({first: (-0.5, 1.0), best: (-0.2, 1.6)}).grade == best
+    assert comb_design.best_grade({}) == (None, None, "")

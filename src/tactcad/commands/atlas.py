@@ -18,8 +18,8 @@ from tactcad.commands.tolerance import add_cluster_args
 from tactcad.errors import DesignError
 from tactcad.stopping import stop_signals_held
 from tactcad.studies.atlas_files import (  # noqa: F401  (the command's names)
-    FIGURE_NAME, PROJECT_ATLAS_FOLDER, SUMMARY_NAME, TABLE_NAME, point_title, read_table,
-    span, write_table)
+    ATLAS_RENAMED, FIGURE_NAME, PROJECT_ATLAS_FOLDER, SUMMARY_NAME, TABLE_NAME, point_title,
+    read_table, span, write_table)
 from tactcad.studies.design_atlas import (  # noqa: F401  (the command's batch rule)
     MAX_AUTO_BATCH, TASKS_PER_WORKER, auto_batch)
 
@@ -164,12 +164,15 @@ def atlas_key(atlas, points: list[dict]) -> str:
         points: every target point (the sample's size, seed and ranges made them).
 
     Returns:
-        The key: those inputs with the tactcad version and the store's code salt.
+        The key: those inputs with the tactcad version, the table's schema
+        (:data:`~tactcad.studies.atlas_files.ATLAS_SCHEMA`) and the store's code salt.
     """
     from tactcad.store import content_key
+    from tactcad.studies.atlas_files import ATLAS_SCHEMA
     from tactcad.version import VERSION
 
-    return content_key("atlas", VERSION, atlas.room, list(atlas.products), points)
+    return content_key("atlas", VERSION, ATLAS_SCHEMA, atlas.room, list(atlas.products),
+                       points)
 
 
 def stored_table(store, key: str) -> Path | None:
@@ -507,7 +510,8 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
         the feasible region's boundary (the largest feasible force, N, in each step of the
         K_obj span; :func:`tactcad.studies.design_atlas.feasible_boundary`) and the Pareto
         front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
-        with its design command); the points judged per second; the files.
+        with its design command); the points judged per second; the files; the front
+        points' renamed keys, old -> new (``deprecated_keys``).
     """
     from collections import Counter
 
@@ -539,6 +543,7 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
                                    / seconds, 4)),
             "key": inputs["key"], "products": per,
             "front": [front_point(r) for r in front_rows],
+            "deprecated_keys": dict(ATLAS_RENAMED),
             "files": {"table": str(out / TABLE_NAME), "figure": str(out / FIGURE_NAME),
                       "summary": str(out / SUMMARY_NAME)}}
 
@@ -550,13 +555,18 @@ def front_point(r: dict) -> dict:
         r: its record.
 
     Returns:
-        Its targets, its finite figures and its design command.
+        Its targets, its finite figures and its design command; a renamed figure also under
+        its old name (:data:`~tactcad.studies.atlas_files.ATLAS_RENAMED`, the summary's
+        ``deprecated_keys``).
     """
+    from tactcad.in_use.kobj_budget import with_deprecated_keys
+
     keys = ("product", "material", "point", "kr_over_km", "kobj_lo_N_per_mm",
             "kobj_hi_N_per_mm", "full_scale_force_N", "columns", "kobj_resolution_rel",
-            "max_force_N", "f1_Hz", "sheet_mm", "layer_um", "command")
-    return {k: r[k] for k in keys
-            if not (isinstance(r[k], float) and not math.isfinite(r[k]))}
+            "max_force_N", "lowest_first_Hz", "sheet_mm", "layer_um", "command")
+    return with_deprecated_keys({k: r[k] for k in keys
+                                 if not (isinstance(r[k], float) and not math.isfinite(r[k]))},
+                                ATLAS_RENAMED)
 
 
 def front_figure(records: list[dict], front: list[dict], path: Path, jaw: str) -> None:

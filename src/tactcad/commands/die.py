@@ -404,9 +404,12 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
     from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
     from tactcad.products.silicon_die.export.die_jobs import DieRun, die_jobs
-    from tactcad.products.silicon_die.mechanics.die_dynamics import (calculix_beam_check,
+    from tactcad.in_use.kobj_budget import with_declared_deprecated_keys
+    from tactcad.products.silicon_die.mechanics.die_dynamics import (FE_CHECK_RENAMED,
+                                                                     calculix_beam_check,
                                                                      closed_form_k_N_per_mm,
                                                                      die_modes, first_resonance_Hz)
+    from tactcad.products.silicon_die.mechanics.die_fem3d import FEM3D_RENAMED
     from tactcad.products.silicon_die.studies.die_reports import die_beam_fem3d_kept
     from tactcad.store import Store, active_store
 
@@ -433,11 +436,14 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
               "die": plan.as_json(), "readout": readout, "jaw": room.label,
               "mount": mount.as_json(),
               "resonance_Hz": modes_json(modes),
-              "fe_check": [c.as_json() for c in fe],
-              "fem3d": [dict(r.as_json(), K_closed_form_error_rel=closed_form_k_N_per_mm(
-                                 plan, _beam_of(plan, r.role), r.frame) / r.k_N_per_mm - 1.0,
-                             f1_closed_form_error_rel=first_resonance_Hz(
-                                 plan, _beam_of(plan, r.role), r.frame) / r.f1_Hz - 1.0)
+              # each row's first resonance named as modal's; the old keys declared in it
+              "fe_check": [with_declared_deprecated_keys(c.as_json(), FE_CHECK_RENAMED)
+                           for c in fe],
+              "fem3d": [with_declared_deprecated_keys(dict(
+                  r.as_json(), K_closed_form_error_rel=closed_form_k_N_per_mm(
+                      plan, _beam_of(plan, r.role), r.frame) / r.k_N_per_mm - 1.0,
+                  first_Hz_closed_form_error_rel=first_resonance_Hz(
+                      plan, _beam_of(plan, r.role), r.frame) / r.f1_Hz - 1.0), FEM3D_RENAMED)
                         for r in fem3d],
               "kobj_budget": budget.as_json(),
               "wafer_dies": dies, "files": {k: p.relative_to(out).as_posix() for k, p in files.items()},
@@ -599,8 +605,9 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
                      f"{r['root']}: "
                      f"K {r['K_N_per_mm']:.4g} N/mm (+-{100 * r['K_error_rel']:.2g} %; closed "
                      f"form {100 * r['K_closed_form_error_rel']:+.2f} %), f1 "
-                     f"{r['f1_Hz'] / 1e3:.4g} kHz (+-{100 * r['f1_error_rel']:.2g} %; closed "
-                     f"form {100 * r['f1_closed_form_error_rel']:+.2f} %), {r['wall_time_s']:.1f} s")
+                     f"{r['first_Hz'] / 1e3:.4g} kHz (+-{100 * r['first_Hz_error_rel']:.2g} %; "
+                     f"closed form {100 * r['first_Hz_closed_form_error_rel']:+.2f} %), "
+                     f"{r['wall_time_s']:.1f} s")
     for c in fe or []:
         lines.append(f"CalculiX, anisotropic C3D8I, {c.role} beam on its frame: K "
                      f"{c.k_fe_N_per_mm:.4g} N/mm "

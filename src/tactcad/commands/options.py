@@ -51,8 +51,11 @@ def renamed_option(old: str, new: str, meaning: str) -> Callable[[str], Any]:
 
 class RenamedOption(argparse.Action):
     """An option's earlier name, still taken (:func:`add_renamed_option`): hidden from
-    ``--help``, it stores its value where the option's new name does and says once, on
-    stderr, that the option was renamed and to which name (one line, no Python warning).
+    ``--help``, it stores its value where the option's new name does and says once that
+    the option was renamed and to which name, as a warning of the run
+    (:class:`tactcad.errors.RenamedOptionWarning`, :mod:`tactcad.commands.notices`): one
+    line on stderr, none with ``--quiet``, and with ``--json`` an entry of the output's
+    ``warnings`` list instead of a line.
 
     Attributes:
         renamed_to: the option's new name (``--force-N``).
@@ -66,22 +69,25 @@ class RenamedOption(argparse.Action):
 
     def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
                  values: Any, option_string: str | None = None) -> None:
-        import sys
+        import warnings
+
+        from tactcad.errors import RenamedOptionWarning
 
         setattr(namespace, self.dest, values)
         if not self.said:
             self.said = True
             old = option_string or self.option_strings[0]
-            print(f"tactcad: warning: {old} was renamed {self.renamed_to}; {old} is "
-                  f"deprecated and will be removed: give {self.renamed_to}",
-                  file=sys.stderr, flush=True)
+            warnings.warn(RenamedOptionWarning(
+                f"{old} was renamed {self.renamed_to}; {old} is deprecated and will be "
+                f"removed: give {self.renamed_to}"))
 
 
 def add_renamed_option(parser: argparse.ArgumentParser, old: str,
                        new: argparse.Action) -> argparse.Action:
     """Keep ``old``, an option's earlier name, working as a deprecated alias of ``new``:
     the same dest, type (so the same refusals), default and metavar, hidden from
-    ``--help``, and one line on stderr when it is given (:class:`RenamedOption`).
+    ``--help``, and a warning of the run when it is given (:class:`RenamedOption`: a line
+    on stderr, none with ``--quiet``, in the ``warnings`` of ``--json``).
 
     Args:
         parser: the command's parser. old: the earlier name (``--force``).

@@ -35,8 +35,8 @@ validates, stands no taller than the jaw's room, its verification matrix at the 
 fails nothing and every stop engages between its rated and its yield-limited deflection. Of those, the softest pair that carries the force
 with :data:`FORCE_MARGIN_REL` to spare is chosen (:func:`chosen`). When none counts, the refusal names each sheet's binding limit and the largest
 full-scale force any sheet carries, as an option to paste; where no comb of the grade carries
-any force at any column count, the first other grade of the library whose comb does
-(:func:`nearest_grade`). Units: mm, N, N/mm.
+any force at any column count, the other grade of the library whose comb carries the most
+of the asked force (:func:`nearest_grade`). Units: mm, N, N/mm.
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from pathlib import PurePath
-from typing import Any, Callable, Iterator, Mapping
+from typing import Any, Callable, Iterator, Mapping, NamedTuple
 
 from tactcad.vocabulary.schema import copy_tables
 from tactcad.design.array_plan import plan_from_dict
@@ -977,9 +977,9 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             limit, the largest full-scale force any carries (``--full-scale-force``) and,
             where the pocket is too small for every sheet's comb, the pocket the smallest
             needs and a jaw of ``other_rooms`` that holds it (``--jaw``); where no comb of
-            the grade carries any force at any column count, another grade of the library
-            whose comb of ``columns`` does (``--material``, :func:`nearest_grade`), its
-            option still ``--full-scale-force``.
+            the grade carries any force at any column count, the grade of the library
+            whose comb of ``columns`` carries the most (``--material``,
+            :func:`nearest_grade`), its option still ``--full-scale-force``.
     """
     with web_solves_kept():  # the refusal's searches meet the same webs again
         base, tried = comb_candidates(targets, room, columns, base, grade=grade,
@@ -1007,8 +1007,9 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                     base, force, columns, room, targets, grade, envelope_of, order, bounds))
             other = None
             if not rated and fewer is None and not jaw[0]:
-                # nothing of this grade to paste: the first other grade whose comb of these
-                # columns counts or carries a force (the refusal's option stays the force's)
+                # nothing of this grade to paste: the other grade whose comb of these
+                # columns carries the most of the force (the refusal's option stays the
+                # force's)
                 other = nearest_grade(base, columns, room, targets, grade, envelope_of)
             refused = refusal(tried, targets, room, columns, jaw, fewer, frontier,
                               other_grade=other, grade_asked=asked_grade(base, grade))
@@ -2289,14 +2290,85 @@ def asked_grade(base: Mapping[str, Any], grade: str | None) -> str:
     return str(grade or material.get("grade") or material.get("name"))
 
 
+def grade_carried(base: dict, columns: int, room: Any, targets: Targets, grade: str,
+                  envelope_of: Callable | None) -> tuple[float, float | None] | None:
+    """What one grade's comb of ``columns`` carries in ``room``, as its margin on the asked
+    full-scale force (the limit a grade with nothing to paste is refused at): its
+    candidates judged at the asked force on every sheet at the K_m scales whose stops can
+    fit (:func:`stop_fitting_scales`), then, where none is rated, at a lighter force
+    (:func:`rated_at_a_lighter_force`).
+
+    Args:
+        base, columns, room, targets, envelope_of: as :func:`nearest_grade`.
+        grade: the library grade judged.
+
+    Returns:
+        (margin_rel, None) where a comb counts at the asked force (its largest
+        ``force_margin_rel``, >= 0); (margin_rel, force N) where it carries only a lighter
+        force (:func:`largest_comb_force`, so that the force pasted designs; margin_rel
+        that force over the asked one, minus 1, < 0); None when it carries no force.
+    """
+    asked_N = targets.full_scale_force_N
+    judged = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of, None)
+              for sheet in sheets_of(base) for scale in stop_fitting_scales(targets)]
+    counting = [c.force_margin_rel for c in judged if c.plan is not None and not c.failures]
+    if counting:
+        return max(0.0, max(counting)), None
+    if not any(c.rated_force_N for c in judged):
+        judged = rated_at_a_lighter_force(base, columns, room, targets, grade, envelope_of)
+    rated = sorted(((c.rated_force_N, c.sheet_mm, c.km_scale) for c in judged
+                    if c.rated_force_N), reverse=True)
+    if not rated:
+        return None
+    order, bounds = [(sheet, scale) for _, sheet, scale in rated], bounds_of(judged)
+    force = largest_comb_force(rated[0][0], lambda f: comb_counts(
+        base, f, columns, room, targets, grade, envelope_of, order, bounds))
+    return force / asked_N - 1.0, force
+
+
+class GradeOffer(NamedTuple):
+    """Another grade a comb refusal offers (:func:`nearest_grade`).
+
+    Attributes:
+        grade: the library grade (None: no other grade carries any force).
+        force_N: None where its comb counts at the asked force; else the largest
+            full-scale force it carries (N).
+        why: why this grade of those that carry ("" when none was compared).
+    """
+
+    grade: str | None
+    force_N: float | None = None
+    why: str = ""
+
+
+def best_grade(carried: Mapping[str, tuple[float, float | None]]) -> GradeOffer:
+    """Of the grades that carry, the one with the largest margin on the asked full-scale
+    force (the library's order on a tie), and why it was chosen.
+
+    Args:
+        carried: grade -> (margin_rel, force N or None), :func:`grade_carried`'s, in the
+            library's order.
+
+    Returns:
+        The offer; ``GradeOffer(None)`` when ``carried`` is empty.
+    """
+    if not carried:
+        return GradeOffer(None)
+    ranked = sorted(carried.items(), key=lambda item: -item[1][0])  # stable: library order
+    grade, (margin, force) = ranked[0]
+    others = ", ".join(f"{g} {m:+.1%}" for g, (m, _) in ranked[1:])
+    why = (f"{grade} has the largest margin on the full-scale force of the grades that carry "
+           f"({margin:+.1%}" + (f"; {others}" if others else "") + ")")
+    return GradeOffer(grade, force, why)
+
+
 def nearest_grade(base: dict, columns: int, room: Any, targets: Targets, grade: str | None,
-                  envelope_of: Callable | None) -> tuple[str | None, float | None]:
-    """The first other grade of the library (in the library's order) whose comb of
-    ``columns`` counts in ``room`` or carries some force, for a refusal with nothing else
-    to paste (no comb of ``grade`` carries any force at any column count): each grade's
-    candidates are judged at the asked force on every sheet at the K_m scales whose stops
-    can fit (:func:`stop_fitting_scales`), then, where none is rated, at a lighter force
-    (:func:`rated_at_a_lighter_force`); the search stops at the first grade that carries.
+                  envelope_of: Callable | None) -> GradeOffer:
+    """The other grade of the library whose comb of ``columns`` carries the most of the
+    asked full-scale force in ``room`` (its margin on it, :func:`grade_carried`), for a
+    refusal with nothing else to paste (no comb of ``grade`` carries any force at any
+    column count): every other grade is judged and the largest margin offered
+    (:func:`best_grade`), not the first in the library's order.
 
     Args:
         base: the tables as searched (their ``[material]`` is the grade asked when
@@ -2306,41 +2378,28 @@ def nearest_grade(base: dict, columns: int, room: Any, targets: Targets, grade: 
             :func:`comb_for_jaw`.
 
     Returns:
-        (grade, None) where that grade's comb counts at the asked force; (grade, force N)
-        where it carries a lighter one (the search's frontier, :func:`largest_comb_force`,
-        so that the force pasted designs); (None, None) when no other grade carries any
-        force.
+        :class:`GradeOffer`: (grade, None, why) where that grade's comb counts at the asked
+        force; (grade, force N, why) where it carries only a lighter one; (None, None, "")
+        when no other grade carries any force.
     """
     from tactcad.vocabulary.material_library import material_grades
 
     asked = asked_grade(base, grade)
-    scales = stop_fitting_scales(targets)  # the others neither count nor rate: not judged
+    carried = {}
     with candidates_weighed():
         for other in material_grades():
-            if other == asked:
-                continue
-            judged = [candidate(base, sheet, scale, columns, room, targets, other,
-                                envelope_of, None) for sheet in sheets_of(base)
-                      for scale in scales]
-            if any(c.plan is not None and not c.failures for c in judged):
-                return other, None
-            if not any(c.rated_force_N for c in judged):
-                judged = rated_at_a_lighter_force(base, columns, room, targets, other,
-                                                  envelope_of)
-            rated = sorted(((c.rated_force_N, c.sheet_mm, c.km_scale) for c in judged
-                            if c.rated_force_N), reverse=True)
-            if rated:
-                order, bounds = [(sheet, scale) for _, sheet, scale in rated], bounds_of(judged)
-                return other, largest_comb_force(rated[0][0], lambda force: comb_counts(
-                    base, force, columns, room, targets, other, envelope_of, order, bounds))
-    return None, None
+            if other != asked:
+                found = grade_carried(base, columns, room, targets, other, envelope_of)
+                if found is not None:
+                    carried[other] = found
+    return best_grade(carried)
 
 
 def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             columns: int, jaw: tuple[str, list[dict]] = ("", []),
             fewer_columns: tuple[int, float | None] | None = None,
             frontier_N: float | None = None,
-            other_grade: tuple[str | None, float | None] | None = None,
+            other_grade: "GradeOffer | tuple[str | None, float | None] | None" = None,
             grade_asked: str = "") -> InverseDesignError:
     """Why no sheet counts, the largest force any carries (a pasteable option:
     ``frontier_N``, :func:`largest_comb_force`, else the candidates' best rating less 1 %)
@@ -2349,8 +2408,10 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
     nearest column count that counts or carries a force (``fewer_columns``, fewer first,
     then more: :func:`nearest_columns`); when no column count carries one either, another
     grade whose comb of ``columns`` counts or carries a force (``other_grade``,
-    :func:`nearest_grade`: (grade, None) where it counts, (grade, force N) where it carries
-    that force, (None, None) where no other grade carries any; None: not searched), offered
+    :func:`nearest_grade`'s :class:`GradeOffer`: (grade, None) where it counts, (grade,
+    force N) where it carries that force, with why that grade (said in the text and the
+    alternative's words), (None, None) where no other grade carries any; None: not
+    searched), offered
     as ``--material`` while the option named stays ``--full-scale-force`` (the design
     atlas's :func:`refusal_option` names the same).
 
@@ -2395,7 +2456,7 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             words = (f"the {which} columns whose comb carries a force in this jaw, and the "
                      "largest force it carries")
     if not nearest and other_grade is not None and other_grade[0] is not None:
-        other, force = other_grade
+        other, force, why = GradeOffer(*other_grade)
         text += (f"\n  no comb of {grade_asked or 'this grade'} at any column count on these "
                  "sheets carries any force in this jaw (each sheet's binding limit above)")
         nearest = f"--material {other}"
@@ -2404,6 +2465,9 @@ def refusal(tried: list[CombCandidate], targets: Targets, room: Any,
             nearest += f" --full-scale-force {force:.3g}"
             words = (f"another grade of the library whose comb of 2 x {columns} carries a "
                      "force in this jaw, and the largest force it carries")
+        if why:
+            text += f"\n  {why}"
+            words += f": {why}"
     if not nearest:  # say why there is nothing to paste
         text += ("\n  none to paste: no comb of any column count on these sheets "
                  "carries any force in this jaw"

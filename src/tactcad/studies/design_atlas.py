@@ -265,7 +265,8 @@ def evaluate_point(atlas: JawAtlas, product: str, material: str, point: Mapping[
         :data:`tactcad.vocabulary.binding_limits.BINDING_LIMITS`; "" when feasible),
         ``binding_detail`` (design's words), ``design_field`` (the option design's refusal
         names) and, for a feasible point, the design's figures: ``kobj_resolution_rel``,
-        ``max_force_N`` (N), ``f1_Hz`` (Hz), ``sheet_mm`` or ``layer_um``; and ``command``,
+        ``max_force_N`` (N), ``lowest_first_Hz`` (Hz), ``sheet_mm`` or ``layer_um``; and
+        ``command``,
         the ``tactcad design`` line that writes it.
 
     Raises:
@@ -273,8 +274,8 @@ def evaluate_point(atlas: JawAtlas, product: str, material: str, point: Mapping[
     """
     record = {"product": product, "material": material, **dict(point),
               "feasible": False, "binding_limit": "", "binding_detail": "", "design_field": "",
-              "kobj_resolution_rel": math.nan, "max_force_N": math.nan, "f1_Hz": math.nan,
-              "sheet_mm": math.nan, "layer_um": math.nan,
+              "kobj_resolution_rel": math.nan, "max_force_N": math.nan,
+              "lowest_first_Hz": math.nan, "sheet_mm": math.nan, "layer_um": math.nan,
               "command": design_command(atlas.jaw, product, material, point)}
     try:
         targets = targets_of(point)
@@ -408,10 +409,10 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
         ``kobj_resolution_rel`` and ``max_force_N`` (N) as its verification matrix predicts
         them (what ``verify`` reads at the closed form: ``max_force_N`` is the predicted
         figure of its ``full_scale_force_N`` row, the force the binding limit allows), and
-        ``f1_Hz``, the lowest first
-        natural frequency of its elements with their gauge installations' mass (Hz;
-        Rayleigh's quotient, ``tactcad modal --json``'s ``lowest_first_Hz`` at the closed
-        form: :func:`tactcad.studies.project_reports.modes_record`).
+        ``lowest_first_Hz``, the lowest first natural frequency of its elements with their
+        gauge installations' mass (Hz; Rayleigh's quotient, ``tactcad modal --json``'s
+        ``lowest_first_Hz`` at the closed form, under its name:
+        :func:`tactcad.studies.project_reports.modes_record`).
     """
     from tactcad.studies.project_reports import modes_record
     from tactcad.studies.verification import verification_matrix
@@ -419,10 +420,10 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
     env = envelope_of(plan) if envelope_of is not None else None
     predicted = {r["requirement"]: r["predicted"]
                  for r in verification_matrix(plan, "closed-form", envelope_mm=env)}
-    f1 = modes_record(plan, "closed-form", modes=1)[0]["lowest_first_Hz"]
+    lowest = modes_record(plan, "closed-form", modes=1)[0]["lowest_first_Hz"]
     return {"kobj_resolution_rel": float(predicted.get("kobj_resolution_rel", math.nan)),
             "max_force_N": float(predicted.get("full_scale_force_N", math.nan)),
-            "f1_Hz": float(f1)}
+            "lowest_first_Hz": float(lowest)}
 
 
 def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
@@ -450,7 +451,7 @@ def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
         raise refusal_of(exc) from None
     return {"kobj_resolution_rel": float(worst_readout_error_rel(plan)),
             "max_force_N": float(min(force for force, _ in rating_limits(plan))),
-            "f1_Hz": float(min(first_resonance_Hz(plan, b) for b in plan.beams)),
+            "lowest_first_Hz": float(min(first_resonance_Hz(plan, b) for b in plan.beams)),
             "layer_um": float(plan.stack.device_um)}
 
 
