@@ -60,3 +60,21 @@ def test_a_comb_paired_along_its_rows_fails_equal_radius_naming_the_worst_unit()
     result = equal_radius_result(row_paired_comb())
     assert not result.passed
     assert "row pairing" in result.detail and "unit 1/6" in result.detail
+
+
+def test_a_jaw_its_rules_refuse_fails_its_pocket_fit_row_and_the_group_goes_on():
+    """A plan made in code skips the load's refusal: the group reports the jaw as a failed
+    row naming the key, value and range (and runs its other checks), never an abort."""
+    import tomllib
+
+    from tactcad.design.array_plan import plan_from_dict
+
+    data = tomllib.loads(GRASPER.read_text(encoding="utf-8"))
+    data["grasper_jaw"] = {**data["grasper_jaw"], "length_mm": 20.0}
+    found = list(grasper_group(CheckContext(plan_from_dict(data), Path("."), None)))
+    assert [label for label, _ in found] == ["grasper"]
+    results = found[0][1]
+    assert [r.check for r in results] == ["pocket fit", "lead channel", "equal radius"]
+    fit = results[0]
+    assert not fit.passed and "grasper_jaw.length_mm = 20.0: allowed value >= " in fit.detail
+    assert not results[2].passed and "not judged" in results[2].detail

@@ -327,3 +327,51 @@ def test_a_jaw_no_thickness_can_pass_names_the_size_that_binds(change, field, wo
     assert [e.field for e in err.value.errors] == [field]
     assert words in err.value.errors[0].allowed
     assert "-" not in err.value.errors[0].allowed.split("mm")[0]
+
+
+#: a lab's jaw as wide as its 12 mm shaft (the opposing jaw left at its 1.5 mm default)
+EQUAL_JAW = {"shaft_diameter_mm": 12.0, "width_mm": 12.0, "length_mm": 30.0,
+             "thickness_mm": 6.0, "pin_inset_mm": -6.0, "opening_angle_deg": 45.0}
+
+
+def test_a_jaw_as_wide_as_its_shaft_names_its_width_with_a_width_that_passes():
+    """Width equal to the bore leaves no thickness: the width is named (not the opposing jaw
+    the file leaves out, with "< 0 mm"), and the widest it offers passes the shaft closed."""
+    with pytest.raises(DesignErrors) as err:
+        jaw_room(EQUAL_JAW, "jaw_eq.toml")
+    assert [e.field for e in err.value.errors] == ["grasper_jaw.width_mm"]
+    allowed = err.value.errors[0].allowed
+    assert allowed.startswith("<= ") and allowed.endswith(" mm")
+    widest = float(allowed.split()[1])
+    assert 0 < widest < 12.0
+    assert jaw_room({**EQUAL_JAW, "width_mm": widest}, "jaw_eq.toml").across_mm > 0
+    # the width stated as a clearance: the clearance is named, with one that passes
+    by_clearance = {k: v for k, v in EQUAL_JAW.items() if k != "width_mm"}
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**by_clearance, "width_clearance_mm": 0.0}, "jaw_eq.toml")
+    assert [e.field for e in err.value.errors] == ["grasper_jaw.width_clearance_mm"]
+    least = float(err.value.errors[0].allowed.split()[1])
+    assert jaw_room({**by_clearance, "width_clearance_mm": least}, "jaw_eq.toml").across_mm > 0
+
+
+@pytest.mark.parametrize("point, words", [
+    ([4.0, float("nan")], "a finite number, -100 <= value <= 100 mm"),
+    ([4.0, 200.0], "-100 <= value <= 100 mm"),
+])
+def test_a_bad_coordinate_of_an_outline_names_the_point_and_a_coordinates_range(point, words):
+    """A coordinate is refused by the coordinate's range, not the outline's count of points."""
+    outline = [point, [33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**JAW_10, "pocket_outline_mm": outline}, "j.toml")
+    e = next(e for e in err.value.errors if e.field.startswith("grasper_jaw.pocket_outline_mm"))
+    assert e.field == "grasper_jaw.pocket_outline_mm[1][2]"
+    assert e.allowed == words and "points" not in e.allowed
+    assert "y across" in e.why
+
+
+def test_an_outline_point_that_is_no_pair_is_refused_as_a_point():
+    outline = [[4.0], [33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**JAW_10, "pocket_outline_mm": outline}, "j.toml")
+    e = next(e for e in err.value.errors if e.field.startswith("grasper_jaw.pocket_outline_mm"))
+    assert (e.field, e.allowed) == ("grasper_jaw.pocket_outline_mm[1]", "an [x, y] point (mm)")

@@ -21,19 +21,48 @@ from tactcad.vocabulary.schema import fmt
 def grasper_group(context: CheckContext) -> Iterator[Found]:
     """``grasper``: the insert in the design's jaw and its leads through its shaft
     (``[grasper_jaw]``, ``[grasper_shaft]``; their defaults where left out; none for a
-    construction without a kernel-free envelope)."""
+    construction without a kernel-free envelope). A jaw that cannot take the insert (a
+    plan made in code, or the default jaw of a design that states none) fails its
+    ``pocket fit`` row with every refusal, so the other checks and the report still run."""
+    from tactcad.errors import DesignErrors
     from tactcad.partlib.grasper_jaw import design_table, insert_envelope_mm, jaw_part
     from tactcad.partlib.grasper_shaft import shaft_part
 
     envelope = insert_envelope_mm(context.plan)
     if envelope is None:
         return
-    jaw = jaw_part(context.plan).geometry
     shaft = shaft_part(design_table(context.plan, "grasper_shaft")).geometry
     tip_h = context.plan.slots[0].geometry.tip_height_mm
+    try:
+        jaw = jaw_part(context.plan).geometry
+    except DesignErrors as exc:  # the radii are judged about this jaw's pin: not judged
+        yield "grasper", [jaw_refused_result(envelope, exc),
+                          shaft_leads_result(context.plan, shaft),
+                          CheckResult("equal radius", "array: every unit's tips at one radius",
+                                      False, "not judged: the design's jaw is refused (pocket "
+                                      "fit), and the radii are about its pin")]
+        return
     yield "grasper", [pocket_fit(envelope, jaw, tip_h),
                       shaft_leads_result(context.plan, shaft),
                       equal_radius_result(context.plan)]
+
+
+def jaw_refused_result(envelope_mm: tuple[float, float, float], refused) -> CheckResult:
+    """The ``pocket fit`` row of a jaw its rules refuse for the insert: failed, naming
+    each refused key, its value and the allowed range.
+
+    Args:
+        envelope_mm: the insert's envelope (across the rows, along the row, height), mm.
+        refused: the jaw's :class:`~tactcad.errors.DesignErrors`.
+
+    Returns:
+        The failed :class:`CheckResult`.
+    """
+    reasons = "; ".join(f"{e.field} = {e.value}: allowed {e.allowed}"
+                        + (f" ({e.why})" if e.why else "") for e in refused.errors)
+    return CheckResult("pocket fit", "grasper_jaw: insert in the pocket", False,
+                       f"insert {' x '.join(fmt(v) for v in envelope_mm)} mm: the jaw cannot "
+                       f"take it: {reasons}")
 
 
 def equal_radius_result(plan) -> CheckResult:

@@ -50,7 +50,7 @@ from tactcad.design.tolerances import TolerancesSection, check_tolerances, toler
 from tactcad.vocabulary.process import (CUT_PROCESSES, DEFAULT_CUT_PROCESS, THINNEST_SHEET_MM,
                                         ProcessLimits, check_sheet_process, check_spacer_process)
 from tactcad.vocabulary.standards import BOLTS, BoltSpec, shortest_stock_length
-from tactcad.errors import DesignError
+from tactcad.errors import DesignError, DesignErrors
 # the array's parts: their tables and dimensions (the derivation below couples them);
 # the design domain's ranges are read from here too
 from tactcad.partlib.array.clamp_plate import ClampPlateGeometry, ClampSection
@@ -1020,12 +1020,18 @@ def load_design(path: str | Path | None = None) -> Plan:
         DesignError: unreadable file, missing/unknown key, or a value outside
             its allowed range (the message names file, field, value and range;
             :class:`~tactcad.errors.DesignErrors` lists every one found); a silicon
-            die's file (made by ``tactcad die``).
+            die's file (made by ``tactcad die``); a stated ``[grasper_jaw]`` its insert
+            cannot fit (:func:`tactcad.partlib.grasper_jaw.stated_jaw_errors`).
     """
     from tactcad.design.file_kind import read_array_tables
+    from tactcad.partlib.grasper_jaw import stated_jaw_errors
 
     p = Path(path) if path is not None else DEFAULT_DESIGN
-    return plan_from_dict(read_array_tables(p), source=str(p), file=p.name)
+    plan = plan_from_dict(read_array_tables(p), source=str(p), file=p.name)
+    jaw_errors = stated_jaw_errors(plan, p.name)  # the jaw it states takes its insert
+    if jaw_errors:
+        raise DesignErrors(jaw_errors)
+    return plan
 
 
 def with_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:

@@ -210,10 +210,18 @@ def _check_scenes_without_rigs(scenes: Mapping[str, SceneSpec], plan: Plan, prob
 def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems) -> Plan | None:
     if design is None:
         return None
+    from tactcad.partlib.grasper_jaw import stated_jaw_errors
+
     model, found = validate_design(design, Path(source).name)
     too_few = stacked_columns_error(design, Path(source).name)  # a row must hold a pair
     problems.extend([too_few, *found.errors] if too_few else found.errors)
-    return None if found or too_few else plan_from_model(model, design, source)
+    if found or too_few:
+        return None
+    plan = plan_from_model(model, design, source)
+    # the jaw the design states takes its insert (the rules its part applies), refused here
+    # rather than first by the command that builds it
+    problems.extend(stated_jaw_errors(plan, Path(source).name))
+    return plan
 
 
 def _companions_of(plan: Plan | None, rigs: Mapping[str, Any] | None,

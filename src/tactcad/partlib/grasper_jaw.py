@@ -107,7 +107,9 @@ class GrasperJawSection(Section):
         "jaw's back for a comb (the face wall the rest), from the grasping face for a die "
         "(its carrier fills what the die leaves); less than thickness_mm; left out: each "
         "construction's own")] = None
-    pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0), 2, 2,
+    pocket_outline_mm: Optional[listing(listing(number(-100.0, 100.0, why="a point's "
+                                                       "[x, y]: x along the jaw from its heel, "
+                                                       "y across it from its axis"), 2, 2,
                                                 "an [x, y] point (mm)"),
                                         3, 64, "3 ... 64 [x, y] points (mm)")] = None
     face_wall_mm: number(FACE_WALL_MIN_MM, 3.0, why="the steel over the pocket the window "
@@ -254,10 +256,27 @@ def _check_depth(p: Problems, j: GrasperJawSection) -> None:
 
 def _check_closed(p: Problems, j: GrasperJawSection) -> None:
     """The two jaws closed pass the shaft: width x (thickness + the opposing jaw) inside its
-    bore (refused naming ``thickness_mm``, with the width and opposing jaw's keys)."""
+    bore (refused naming ``thickness_mm``, with the width and opposing jaw's keys; a jaw as
+    wide as the bore, which leaves no thickness at all, naming its width and the widest the
+    two jaws' thicknesses pass)."""
     width, bore = jaw_width_mm(j), bore_mm(j)
-    closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
+    both_jaws = j.thickness_mm + j.opposing_jaw_mm
+    closed = math.hypot(width, both_jaws)
     if closed <= bore + 1e-9 or width > bore + 1e-9:  # too wide: the width's refusal says it
+        return
+    if width >= bore - 1e-9:  # as wide as the bore: no thickness of either jaw passes
+        key = "width_mm" if j.width_mm is not None else "width_clearance_mm"
+        widest = math.floor(closed_thickness_limit_mm(bore, both_jaws) * 1e4) / 1e4
+        value = width if key == "width_mm" else j.width_clearance_mm
+        allowed = (f"<= {fmt(widest)} mm" if key == "width_mm" else
+                   f">= {fmt(math.ceil((bore - widest) * 1e4) / 1e4)} mm") \
+            if both_jaws < bore - 1e-9 else (f"< {fmt(bore)} mm" if key == "width_mm" else "> 0 mm")
+        p.add(f"grasper_jaw.{key}", value, allowed,
+              f"the closed jaws ({fmt(width)} x {fmt(both_jaws)} mm: this jaw's "
+              f"{fmt(j.thickness_mm)} mm (thickness_mm) and the opposing jaw's "
+              f"{fmt(j.opposing_jaw_mm)} mm (opposing_jaw_mm)) pass the {shaft_words(j)} mm "
+              "shaft only narrower than it" + ("" if both_jaws < bore - 1e-9 else
+                                                 "; and the two jaws together thinner than it"))
         return
     both = closed_thickness_limit_mm(bore, width)
     if j.opposing_jaw_mm >= both - 1e-9:  # no jaw thickness fits beside this opposing jaw
@@ -907,6 +926,35 @@ def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
     if table is None:
         table = design_table(plan, "grasper_jaw")
     return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan)
+
+
+def stated_jaw_errors(plan, file: str = "") -> list:
+    """The refusals of the jaw a design states (``[grasper_jaw]``) for its own insert, by
+    the rules :func:`jaw_part` applies (the closed jaws inside the shaft, the pivot, the
+    pocket round the insert, the jaw's length to hold it, ...): run when the design is read,
+    so that no command (``verify``, ``check``, ``export``, ``grasp``) takes a jaw the insert
+    cannot fit. A design without ``[grasper_jaw]`` (the paper's macro array), or whose
+    construction gives no kernel-free envelope (the stacked array, whose jaw nothing
+    derives), has none.
+
+    Args:
+        plan: the design's plan (``plan.raw`` its tables, ``--set`` values included).
+        file: the design file's name, for the messages.
+
+    Returns:
+        Every refusal (:class:`~tactcad.errors.DesignError`: ``grasper_jaw.<key>``, its
+        value in mm or degrees and the allowed range); empty when the jaw takes the insert.
+    """
+    from tactcad.errors import DesignErrors
+
+    if "grasper_jaw" not in (getattr(plan, "raw", None) or {}) \
+            or insert_envelope_mm(plan) is None:
+        return []
+    try:
+        jaw_part(plan, file=file)
+    except DesignErrors as exc:
+        return list(exc.errors)
+    return []
 
 
 IN_USE_PART = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,

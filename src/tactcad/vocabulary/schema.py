@@ -272,10 +272,10 @@ def _field_at(model: type[BaseModel], loc: tuple) -> tuple[str, Limits | None, t
     for part in loc:
         if isinstance(part, int):
             name += f"[{part + 1}]"
-            if ann is not None:
-                args = typing.get_args(ann)
-                item = _limits(args[0]) if args else None
-                limits = item or limits
+            item_type = _list_item(ann) if ann is not None else None
+            if item_type is not None:  # a list of lists: the next index reads this item's
+                limits = _limits(item_type) or limits
+                ann = item_type
             continue
         name = f"{name}.{part}" if name else str(part)
         fields = getattr(cls, "model_fields", {}) if cls is not None else {}
@@ -293,6 +293,21 @@ def _field_at(model: type[BaseModel], loc: tuple) -> tuple[str, Limits | None, t
         else:
             cls = None
     return name, limits, cls
+
+
+def _list_item(ann: Any) -> Any:
+    """The item type of a list field's annotation, through ``Optional`` and ``Annotated``
+    (``list[float]`` -> ``float``); None when ``ann`` is no list."""
+    origin = typing.get_origin(ann)
+    if origin is Annotated:
+        return _list_item(typing.get_args(ann)[0])
+    if origin in (typing.Union, types.UnionType):
+        found = [_list_item(a) for a in typing.get_args(ann) if a is not type(None)]
+        return next((f for f in found if f is not None), None)
+    if origin in (list, tuple):
+        args = typing.get_args(ann)
+        return args[0] if args else None
+    return None
 
 
 class _KeyedModel:
