@@ -11,6 +11,7 @@ from collections import Counter
 
 import pytest
 
+from conftest import warm_store_copy
 from tactcad import cli
 from tactcad.errors import DesignError, TactcadError
 from tactcad.assembly.rig_models import describe, scene_names
@@ -173,14 +174,33 @@ def _bad_design_dir(tmp_path, edit):
     return tmp_path / "macro_array.toml"
 
 
+def fem3d_solves_missing(design, store) -> list[str]:
+    """The fem3d solves (K and peak stress, per distinct element) of ``design`` that
+    ``store`` (a folder) does not hold, each as "what: element"; none solved here."""
+    from tactcad.design.project import load_project
+    from tactcad.store import Store, keeping_results
+    from tactcad.studies.parallel_solves import PEAK_STRESS, STIFFNESS, _kept
+
+    plan = load_project(design).plan
+    with keeping_results(Store(store)):
+        return [f"{what}: {name}" for name, g in plan.distinct_elements.items()
+                for what in (STIFFNESS, PEAK_STRESS) if not _kept("fem3d", g, plan.material, what)]
+
+
 @pytest.mark.slow
-def test_collision_fails_check_with_names_and_volume(tmp_path, capsys):
+def test_collision_fails_check_with_names_and_volume(tmp_path, capsys, verified_store):
     """A longer cart runs into the column: `tactcad check` names both parts
-    and the overlap volume, the mesh fast path and OpenCascade agree."""
+    and the overlap volume, the mesh fast path and OpenCascade agree.
+
+    Only the rig changes, so the design's elements are the default's: the check reads their
+    fem3d solves (its requirement group climbs to fem3d) from a copy of the verified store
+    rather than solving them again for a claim about a scene."""
     design = _bad_design_dir(tmp_path, lambda t: t.replace("[cart]\nlength_mm = 80.0",
                                                            "[cart]\nlength_mm = 140.0"))
+    store = warm_store_copy(verified_store, tmp_path / "store")
+    assert not fem3d_solves_missing(design, store)
     code = cli.main(["check", "--design", str(design), "--scene", "sample-stiffness-rig",
-                     "--failures-only"])
+                     "--failures-only", "--cache", str(store)])
     out = capsys.readouterr().out
     assert code == 1
     m = re.search(r"FAIL\s+interference\s+sample-stiffness-rig: (column / cart|cart / column) "

@@ -452,6 +452,21 @@ def test_partial_export_manifest_lists_only_what_was_written(tmp_path):
 
 
 # --- check reuses the export it checks ---------------------------------------------------------
+#: The ``--set`` making the other design whose export check refuses to reuse: its clamp
+#: plates 2.5 mm (mm) where the default's are 3 mm.
+OTHER_DESIGN_SET = "clamp.plate_thickness_mm=2.5"
+
+
+def test_the_other_design_checked_differs_and_keeps_the_defaults_elements():
+    """The design whose export check refuses is another design, yet its elements are the
+    default's: their fem3d solves are the verified store's, so the check solves none."""
+    default = plan_from_args(argparse.Namespace(design=None, overrides=[]))
+    other = plan_from_args(argparse.Namespace(
+        design=None, overrides=[OTHER_DESIGN_SET]))
+    assert other.design_hash != default.design_hash and other.clamp != default.clamp
+    assert other.distinct_elements == default.distinct_elements
+
+
 @pytest.mark.slow
 def test_check_reuses_a_current_export_and_leaves_a_hand_edit(tmp_path, verified_store):
     out, store = tmp_path / "out", warm_store_copy(verified_store, tmp_path / "store")
@@ -462,10 +477,13 @@ def test_check_reuses_a_current_export_and_leaves_a_hand_edit(tmp_path, verified
     assert proc.returncode == 0 and report["reused_export"] and report["failed"] == 0
     assert report["passed"] + report["undecided"] == len(report["checks"]) > 0
 
-    other = tmp_path / "other"  # an export of another design
+    # an export of another design: its clamp plates thinner, its elements the default's, so
+    # its check reads their fem3d solves from the verified store (a thinner web made a new
+    # element, whose fem3d solves took most of this test and were not what it asserts)
+    other = tmp_path / "other"
     shutil.copytree(out, other)
     proc = run_cli("check", "--scene", "wirecut", "--out", str(other), "--cache", str(store),
-                   "--set", "element.web_thickness_mm=0.3", "--json")
+                   "--set", OTHER_DESIGN_SET, "--json")
     report = json.loads(proc.stdout)
     assert not report["reused_export"] and "another design" in report["export_refusal"]
 
