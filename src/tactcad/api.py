@@ -1093,8 +1093,8 @@ def _checked_integer(option: str, value: Any, lo: int, hi: int, what: str) -> in
     return int(value)
 
 
-def _tolerance_asked(samples: Any, seed: Any, kobj: Any,
-                     distribution: Any) -> tuple[int, int, tuple[float, ...] | None, str | None]:
+def _tolerance_asked(samples: Any, seed: Any, kobj: Any, distribution: Any,
+                     die: bool = False) -> tuple[int, int, tuple[float, ...] | None, str | None]:
     """The options ``tactcad tolerance`` shares between a metal design and a die, checked
     with the command's ranges and defaults (:mod:`tactcad.commands.tolerance`).
 
@@ -1102,6 +1102,8 @@ def _tolerance_asked(samples: Any, seed: Any, kobj: Any,
         samples: as-built designs drawn (None: 10 000). seed: the draw's seed (None: 0).
         kobj: true object stiffnesses (N/mm, each > 0; None: the design's default).
         distribution: ``normal``, ``uniform`` or None (the product's default).
+        die: a silicon die's Monte Carlo (``samples`` in its range, dies drawn), else a
+            metal array's.
 
     Returns:
         (samples, seed, kobj as a tuple or None, distribution).
@@ -1112,11 +1114,14 @@ def _tolerance_asked(samples: Any, seed: Any, kobj: Any,
     """
     from tactcad.commands.tolerance import KOBJ_RANGE, SEED_RANGE
     from tactcad.errors import DesignError
+    from tactcad.products.silicon_die.studies.die_tolerance import DIE_SAMPLES_RANGE
     from tactcad.studies.tolerance_montecarlo import (MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED,
                                                       SAMPLES_RANGE)
 
+    # the product's own range, in the command's words (tactcad.commands.tolerance)
     samples = _checked_integer("--samples", MONTE_CARLO_SAMPLES if samples is None else samples,
-                               *SAMPLES_RANGE, "samples")
+                               *(DIE_SAMPLES_RANGE if die else SAMPLES_RANGE),
+                               "dies drawn" if die else "arrays drawn")
     seed = _checked_integer("--seed", MONTE_CARLO_SEED if seed is None else seed, *SEED_RANGE,
                             "a seed")
     if kobj is not None:
@@ -1214,9 +1219,21 @@ class DieProject:
     @cached_property
     def planned(self):
         """The die planned from its file (:class:`tactcad.commands.die.PlannedDie`: plan,
-        the jaw's room, the jaw as mounted)."""
-        from tactcad.commands.die import _die_args, die_asked, plan_of
+        the jaw's room, the jaw as mounted).
 
+        Raises:
+            DesignErrors: the file's refusals, a refused ``set`` value named as ``set`` (as
+                :func:`load` names an array's), not as the command's ``--set``.
+        """
+        from tactcad.commands.die import _die_args, die_asked, plan_of
+        from tactcad.errors import DesignErrors
+        from tactcad.products.silicon_die.design.die_file import load_die_design
+
+        if self._overrides:  # the file with the set values first, refused in the API's words
+            try:
+                load_die_design(self.source, self._overrides)
+            except DesignErrors as exc:
+                raise exc.sourced({key: "set" for key in self._overrides}) from None
         with _working_folder_store():  # the plan's own solves (its tissue coupling) kept too
             return plan_of(die_asked(_die_args(self.source, self._args(), Path("."))))
 
@@ -1354,7 +1371,8 @@ class DieProject:
         Raises:
             DesignError: a value out of its range, named by the keyword argument.
         """
-        samples, seed, kobj, distribution = _tolerance_asked(samples, seed, kobj, distribution)
+        samples, seed, kobj, distribution = _tolerance_asked(samples, seed, kobj, distribution,
+                                                             die=True)
         return self._report("tolerance", samples=samples, seed=seed,
                             kobj=None if kobj is None else list(kobj), distribution=distribution)
 

@@ -127,7 +127,7 @@ def run_tactcad(words: list[str], cwd: Path, where: str,
 #: Pages whose ``console`` blocks are checked against what their commands print now:
 #: every line shown under a ``$`` line is a line of its output (``...`` alone stands for
 #: lines left out, a line ending ``(...)`` for the rest of a line).
-EXCERPTS_CHECKED = {"how-to/design-array.md", "tutorials/mems-die.md"}
+EXCERPTS_CHECKED = {"how-to/design-array.md", "tutorials/mems-die.md", "reference/design-file.md"}
 
 
 def shown_but_not_printed(shown: list[str], printed: str) -> list[str]:

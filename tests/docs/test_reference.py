@@ -223,3 +223,25 @@ def test_the_api_pages_examples_run():
         assert result.failed == 0, name
         attempted += result.attempted
     assert attempted >= 4
+
+
+# --- the Python page's quoted refusals -----------------------------------------------------------
+def test_the_python_pages_quoted_refusals_are_what_the_api_raises(tmp_path, monkeypatch):
+    """Each "`CALL` raises `MESSAGE`" of docs/how-to/python.md: CALL, run with ``die`` a
+    die's project (the shipped die's file as ``die.toml``), raises exactly MESSAGE."""
+    import shutil
+
+    import tactcad
+    from tactcad.errors import TactcadError
+
+    text = " ".join((DOCS / "how-to" / "python.md").read_text(encoding="utf-8").split())
+    quoted = re.findall(r"`([^`]+\))` raises `([^`]+)`", text)
+    assert len(quoted) >= 2, quoted  # the page was read: the die's grasp and its load's set
+    shutil.copy(ROOT / "hardware" / "grasper_jaw_5mm_mems" / "grasper_jaw_5mm_mems.toml",
+                tmp_path / "die.toml")
+    monkeypatch.chdir(tmp_path)
+    names = {"tactcad": tactcad, "die": tactcad.load("die.toml")}
+    for call, message in quoted:
+        with pytest.raises(TactcadError) as err:
+            eval(call, names)  # noqa: S307 (the page's own example call)
+        assert str(err.value) == message, call

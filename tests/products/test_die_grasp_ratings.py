@@ -4,6 +4,7 @@ rate it at (:meth:`DiePlan.rated_force_N`), and its texts say so."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -41,3 +42,28 @@ def test_the_default_force_is_half_each_beams_own_rating(die_folder):
     expected = 0.5 * sum(plan.rated_force_N(b) for b in plan.beams)
     assert record["grasp"]["total_force_N"] == pytest.approx(expected, rel=1e-6)
     assert record["full_scale_force_N"] == plan.full_scale_force_N
+
+
+def test_the_full_scale_force_is_described_as_the_reference_rows_rating(capsys):
+    # each row is rated at what its stop and limits allow: the full-scale force is the
+    # reference row's; the measuring row's is less, so "the rated force on each beam" is wrong
+    import tactcad
+    from tactcad import cli
+    from tactcad.products.silicon_die.design.die_file import DieSection
+
+    plan = tactcad.load(EXAMPLE).plan
+    rated = {b.role: plan.rated_force_N(b) for b in plan.beams}
+    assert rated["reference"] == plan.full_scale_force_N > rated["measuring"]
+    texts = {"[die] full_scale_force_N": str(DieSection.model_fields["full_scale_force_N"])}
+    for command in ("die", "design"):
+        with pytest.raises(SystemExit):
+            cli.main([command, "--help"])
+        help_text = " ".join(capsys.readouterr().out.split())
+        # the option's own text: from its name in the options' list (after the usage's) to
+        # the next option's
+        entry = help_text.rsplit("--full-scale-force F ", 1)[-1]
+        texts[f"{command} --help"] = re.split(r" --[a-z]", entry, maxsplit=1)[0]
+    for where, text in texts.items():
+        assert "each beam" not in text, where
+        assert "reference row's rated force" in " ".join(text.split()), where
+        assert "tactcad strength" in text, where

@@ -163,3 +163,19 @@ def test_a_dies_samples_past_its_range_are_refused_naming_the_range():
     with pytest.raises(DesignError) as err:
         die.tolerance(samples=DIE_SAMPLES_RANGE[1] + 1)
     assert err.value.field == "samples" and f"2 ... {DIE_SAMPLES_RANGE[1]}" in err.value.allowed
+    with pytest.raises(DesignError) as err:  # below it: the die's range too, not an array's
+        die.tolerance(samples=1)
+    assert (err.value.field, err.value.value) == ("samples", 1)
+    assert err.value.allowed == f"an integer 2 ... {DIE_SAMPLES_RANGE[1]} (dies drawn)"
+
+
+@pytest.mark.parametrize("samples", ["1", "5000000"])
+def test_the_command_refuses_a_dies_samples_with_the_dies_range_alone(die_folder, samples):
+    # the parser reads no design: the range is the product's, one message either side of it
+    from tactcad.products.silicon_die.studies.die_tolerance import DIE_SAMPLES_RANGE
+
+    r = run_cli("tolerance", "--samples", samples, cwd=die_folder)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert (f"--samples = {samples}: allowed an integer 2 ... {DIE_SAMPLES_RANGE[1]} "
+            "(dies drawn)") in r.stderr
+    assert "10000000" not in r.stderr

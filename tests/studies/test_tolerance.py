@@ -136,9 +136,21 @@ def test_cli_json_keys(capsys):
 
 
 def test_cli_refuses_bad_input(capsys):
-    assert main(["tolerance", "--samples", "1"]) == 2
-    assert "argument --samples: '1': allowed an integer 2 ... 10000000" in \
-        capsys.readouterr().err
+    # a metal array's range, not a die's (one range per product: the parser reads no design)
+    for n in ("1", "10000001"):
+        assert main(["tolerance", "--samples", n]) == 2
+        err = capsys.readouterr().err
+        assert f"--samples = {n}: allowed an integer 2 ... 10000000 (arrays drawn)" in err
+        assert "1000000 (dies" not in err
+    assert main(["tolerance", "--samples", "x"]) == 2  # no integer: both products' ranges
+    err = " ".join(capsys.readouterr().err.split())
+    assert ("'x': allowed an integer 2 ... 10000000 (arrays drawn); on a silicon die's design "
+            "an integer 2 ... 1000000 (dies drawn)") in err
+    with pytest.raises(SystemExit):
+        main(["tolerance", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert ("as-built arrays drawn, 2 ... 10000000 (default 10000, as verify draws); on a "
+            "silicon die's design the dies drawn, 2 ... 1000000") in help_text
 
 
 def test_runs_on_a_design_other_than_the_paper(design_data):

@@ -240,3 +240,23 @@ def test_ti_datum_is_a_maximum_stress_converted():
     assert ti.fatigue_strength_MPa == pytest.approx(fully_reversed_amplitude(
         ti.fatigue_datum_MPa, "maximum", ti.fatigue_R_ratio, ti.ultimate_strength_MPa))
     assert ti.fatigue_strength_MPa < ti.fatigue_datum_MPa
+
+
+@pytest.mark.parametrize("example", ["macro_array", "grasper_jaw_10mm"])
+def test_an_unknown_grade_is_the_one_refusal_not_the_e_and_nu_it_would_supply(example):
+    # a stacked array's file and a comb's, neither stating E nor nu: the grade gives them, so
+    # an unknown grade is refused for itself, not also as a missing E and nu
+    import tomllib
+    from pathlib import Path
+
+    from tactcad.design.array_plan import validate_design
+
+    file = Path(__file__).resolve().parents[2] / "hardware" / example / f"{example}.toml"
+    data = tomllib.loads(file.read_text())
+    for key in ("youngs_modulus_MPa", "poisson_ratio"):
+        data["material"].pop(key, None)
+    assert not validate_design(data, file.name)[1].errors  # the grade supplies them
+    data["material"]["grade"] = "unobtainium"
+    errors = validate_design(data, file.name)[1].errors
+    assert [(e.field, e.value) for e in errors] == [("material.grade", "unobtainium")]
+    assert all(g in errors[0].allowed for g in REQUIRED_GRADES)

@@ -153,10 +153,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--kobj-range", type=number(MIN_KOBJ_N_PER_MM, MAX_KOBJ_N_PER_MM, "N/mm"),
                    nargs=2, required=True, metavar=("LO", "HI"),
                    help="object stiffnesses to read (N/mm)")
+    from tactcad.products.silicon_die.design.mems_die import FULL_SCALE_FORCE_WORDS
+
     p.add_argument("--full-scale-force", type=number(MIN_FULL_SCALE_FORCE_N,
                                                      MAX_FULL_SCALE_FORCE_N, "N"),
                    required=True, metavar="F",
-                   help="force every element must carry (N)")
+                   help="force every element must carry (N); on a silicon die "
+                        f"(--construction mems-die): {FULL_SCALE_FORCE_WORDS}")
     p.add_argument("--max-grasp-force", type=number(0, MAX_GRASP_FORCE_N, "N", lo_open=True),
                    default=None,
                    metavar="F",

@@ -21,7 +21,8 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args,
 from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import count, number, output_folder
 from tactcad.products.silicon_die.design.mems_die import (DEFAULT_COLUMNS, DEFAULT_DIE_NAME,
-                                                          DEFAULT_PITCH_UM, LEAST_PITCH_UM)
+                                                          DEFAULT_PITCH_UM,
+                                                          FULL_SCALE_FORCE_WORDS, LEAST_PITCH_UM)
 from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_KOBJ_N_PER_MM,
                                                  MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 from tactcad.errors import DesignError, DesignErrors
@@ -70,7 +71,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="object stiffnesses to read (N/mm)")
     p.add_argument("--full-scale-force", type=number(MIN_FULL_SCALE_FORCE_N,
                                                      MAX_FULL_SCALE_FORCE_N, "N"),
-                   metavar="F", help="the rated force on each beam (N)")
+                   metavar="F", help=f"{FULL_SCALE_FORCE_WORDS} (N)")
     p.add_argument("--columns", type=count(2, 50), default=None, metavar="N",
                    help=f"units along the die (2 ... 50; default {DEFAULT_COLUMNS})")
     p.add_argument("--pitch-um", type=number(LEAST_PITCH_UM, 5000, "um"), default=None,

@@ -7,6 +7,8 @@ import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, product_view
 from tactcad.commands.options import count, keep_option_defaults, number
+from tactcad.errors import DesignError
+from tactcad.products.silicon_die.studies.die_tolerance import DIE_SAMPLES_RANGE
 from tactcad.studies.tolerance_montecarlo import (
     MONTE_CARLO_SAMPLES, MONTE_CARLO_SEED, SAMPLES_RANGE)
 
@@ -22,6 +24,54 @@ KOBJ_RANGE = (0.0, 1e6)
 WHAT_IF_OPTIONS = {"notch_radius_tol": ("notch_radius_mm", 0.0, 10.0, "mm"),
                    "arm_tol": ("arm_length_mm", 0.0, 10.0, "mm"),
                    "modulus_tol": ("modulus_rel", 0.0, 0.5, "")}
+#: ``--samples``'s ranges, each in the words of its refusal: a metal array's
+#: (:data:`~tactcad.studies.tolerance_montecarlo.SAMPLES_RANGE`) and a silicon die's
+#: (:data:`~tactcad.products.silicon_die.studies.die_tolerance.DIE_SAMPLES_RANGE`).
+ARRAY_SAMPLES_ALLOWED = f"an integer {SAMPLES_RANGE[0]} ... {SAMPLES_RANGE[1]} (arrays drawn)"
+DIE_SAMPLES_ALLOWED = f"an integer {DIE_SAMPLES_RANGE[0]} ... {DIE_SAMPLES_RANGE[1]} (dies drawn)"
+
+
+def samples_count(text: str) -> int:
+    """An argparse type for ``--samples``: the integer given. Its range is the product's
+    (a metal array's or a silicon die's), which the parser, reading no design, does not know:
+    :func:`check_array_samples` and the die's view check it.
+
+    Args:
+        text: the option's value.
+
+    Returns:
+        ``int(text)``.
+
+    Raises:
+        argparse.ArgumentTypeError: not an integer, naming both products' ranges.
+    """
+    try:
+        return int(text)
+    except (TypeError, ValueError):
+        raise argparse.ArgumentTypeError(
+            f"{text[:40]!r}: allowed {ARRAY_SAMPLES_ALLOWED}; on a silicon die's design "
+            f"{DIE_SAMPLES_ALLOWED}") from None
+
+
+samples_count.__name__ = "integer"
+
+
+def check_array_samples(samples: int) -> int:
+    """``samples`` when a metal array's Monte Carlo takes that many arrays
+    (:data:`~tactcad.studies.tolerance_montecarlo.SAMPLES_RANGE`).
+
+    Args:
+        samples: the arrays asked (``--samples``).
+
+    Returns:
+        ``samples``.
+
+    Raises:
+        DesignError: ``--samples`` outside the range, naming it.
+    """
+    if not SAMPLES_RANGE[0] <= samples <= SAMPLES_RANGE[1]:
+        raise DesignError("--samples", samples, ARRAY_SAMPLES_ALLOWED)
+    return samples
 
 
 def add_cluster_args(p: argparse.ArgumentParser, local_default: bool = False) -> None:
@@ -51,10 +101,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "coupled R and the K_obj it reads, and the spread against the budget's "
                     "terms. Units: mm, N/mm (um for a die's features).")
     add_design_arg(p)
-    p.add_argument("--samples", type=count(*SAMPLES_RANGE, "samples"),
-                   default=MONTE_CARLO_SAMPLES,
-                   help="as-built arrays drawn (default %(default)s, as verify draws; a silicon "
-                        "die's: 2 ... 1000000)")
+    p.add_argument("--samples", type=samples_count, default=MONTE_CARLO_SAMPLES,
+                   help=f"as-built arrays drawn, {SAMPLES_RANGE[0]} ... {SAMPLES_RANGE[1]} "
+                        f"(default %(default)s, as verify draws); on a silicon die's design the "
+                        f"dies drawn, {DIE_SAMPLES_RANGE[0]} ... {DIE_SAMPLES_RANGE[1]}")
     p.add_argument("--seed", type=count(*SEED_RANGE, "a seed"), default=MONTE_CARLO_SEED,
                    help="seed of the draw (default %(default)s, as verify)")
     p.add_argument("--kobj", type=number(*KOBJ_RANGE, "N/mm", lo_open=True), nargs="+",
@@ -95,6 +145,7 @@ def run(args: argparse.Namespace) -> int:
     from tactcad.paper.table1 import with_equal_arm_spread
     from tactcad.studies.project_reports import tolerance_record
 
+    check_array_samples(args.samples)  # before the design is planned: a refusal at once
     plan = plan_from_args(args)
     what_if = {field: getattr(args, option) for option, (field, *_) in WHAT_IF_OPTIONS.items()}
     asked = dict(kobj=args.kobj, reference=args.reference, distribution=args.distribution,

@@ -884,10 +884,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile
     model = validate(DesignFile, data, p)
     read_assumptions(data, DesignFile, p, "element.notch_radius_mm")
     grade_error = _grade_error(data)
-    if grade_error is not None:  # the grade, not the E and nu it would have supplied
-        p.errors = [e for e in p.errors if e.field not in (
-            "material.youngs_modulus_MPa", "material.poisson_ratio") or e.value is not None]
-        p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
+    refuse_grade(p, grade_error)
     if model is None:
         return None, p
     try:
@@ -914,6 +911,21 @@ def _grade_error(data: Mapping[str, Any]) -> DesignError | None:
     except DesignError as exc:
         return exc
     return None
+
+
+def refuse_grade(p: Problems, grade_error: DesignError | None) -> None:
+    """Refuse an unknown ``material.grade`` in ``p``: the grade, not the E and nu it would
+    have supplied (a table that omits them is refused only for its grade).
+
+    Args:
+        p: the design's refusals so far (changed in place).
+        grade_error: :func:`_grade_error`'s refusal, or None (nothing is changed).
+    """
+    if grade_error is None:
+        return
+    p.errors = [e for e in p.errors if e.field not in (
+        "material.youngs_modulus_MPa", "material.poisson_ratio") or e.value is not None]
+    p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
 
 
 def with_grade_defaults(data: Mapping[str, Any]) -> Mapping[str, Any]:

@@ -33,7 +33,8 @@ from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN
                                        check_in_use, check_web_tolerance_held, design_hash,
                                        EdmRules, edm_rules, in_use_tables, pairing_of,
                                        shaping_tables, unit_references,
-                                       with_grade_defaults, _grade_error)
+                                       with_grade_defaults, _grade_error,
+                                       refuse_grade)
 from tactcad.design.bom_section import BomSection
 from tactcad.design.readout_section import ReadoutSection, check_readout
 from tactcad.design.requirements_section import (RequirementsSection, check_requirements,
@@ -580,8 +581,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables
     model = validate(CombFile, data, p)
     read_assumptions(data, CombFile, p, "comb.post_length_mm")
     grade_error = _grade_error(data)
-    if grade_error is not None:
-        p.add(grade_error.field, grade_error.value, grade_error.allowed, grade_error.why)
+    refuse_grade(p, grade_error)  # the grade, not the E and nu it would have supplied
     if model is None:
         return None, p
     try:

@@ -19,7 +19,8 @@ from tactcad.products.silicon_die.design.mems_die import (COLUMNS_RANGE, DEFAULT
                                                           DEFAULT_DIE_ATTACH,
                                                           DEFAULT_DIE_NAME,
                                                           DEFAULT_KOBJ_RESOLUTION_REL,
-                                                          DEFAULT_PITCH_UM, LEAST_PITCH_UM,
+                                                          DEFAULT_PITCH_UM,
+                                                          FULL_SCALE_FORCE_WORDS, LEAST_PITCH_UM,
                                                           ROOT_FILLET_RANGE_UM, DieAttach,
                                                           WeibullPair)
 from tactcad.products.silicon_die.vocabulary.soi_process import DRIE_MIN_RADIUS_UM
@@ -49,7 +50,7 @@ class DieSection(Section):
                                  f"{MAX_KOBJ_N_PER_MM:g} N/mm",
                                  "object stiffnesses the die must read")
     full_scale_force_N: number(MIN_FULL_SCALE_FORCE_N, MAX_FULL_SCALE_FORCE_N, unit="N",
-                               why="the rated force on each beam")
+                               why=FULL_SCALE_FORCE_WORDS)
     columns: integer(*COLUMNS_RANGE, why="units along the die") = DEFAULT_COLUMNS
     pitch_um: number(LEAST_PITCH_UM, 5000.0, unit="um",
                      why="the units' spacing along the die: each beam's three bond pads and its "

@@ -166,6 +166,12 @@ DEFAULT_COLUMNS, DEFAULT_PITCH_UM, DEFAULT_DIE_NAME = 5, 1000.0, "mems_die"
 COLUMNS_RANGE = (2, 50)
 #: Beam widths searched (um): from the slot rule's smallest beam to the pitch's widest.
 WIDTH_STEP_UM = 5.0
+#: What a die's full-scale force (``[die] full_scale_force_N``, ``--full-scale-force``) is, in
+#: the words of the die's help and schema (:meth:`DiePlan.rated_force_N`): the reference row's
+#: rated force, not each beam's.
+FULL_SCALE_FORCE_WORDS = ("the die's full-scale force, its reference row's rated force; each "
+                          "row's rated force is what its stop and limits allow (the measuring "
+                          "row's less), listed per row by tactcad strength")
 #: A row's hard stop, its cavity's floor, engages at this multiple of its beam's rated tip
 #: deflection (the metal combs' rule, :data:`tactcad.studies.comb_design.STOP_MULTIPLE`):
 #: the beam reads its whole range, an overload rests on the floor.
