@@ -154,16 +154,28 @@ def test_a_dies_check_leaves_hand_edits_as_they_are_and_fails_them(die_folder):
 def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):
     """`max_grasp_force_N` in a die's file: verify closes the die's jaw to it on the
     default tissue (the grasp command's own defaults) and judges each beam against its
-    breaking force, the stops taking the rest; a force the jaw cannot reach fails."""
+    breaking force, the stops taking the rest; a force the jaw cannot reach fails. With the
+    posts on their stops (whose strength is not judged) and the face in the tissue (past the
+    punch model) the row is undecided, not passed; its predicted figure is a grasp force, as
+    its target is, or none where the stops hold the beams."""
     r = run_cli("verify", "--set", "die.max_grasp_force_N=2", "--json", cwd=die_folder)
     assert r.returncode == 0, r.stdout
     row = next(x for x in json.loads(r.stdout)["matrix"]
                if x["requirement"] == "max_grasp_force_N")
-    assert row["verdict"] == "pass" and row["margin_rel"] > 0
+    assert "not judged" in row["binding_words"] and "past the punch model" in row["binding_words"]
+    assert row["verdict"] == "undecided" and row["predicted"] is None
     g = json.loads(run_cli("grasp", "--force-N", "2", "--json", cwd=die_folder).stdout)
     beam = int(row["binding_words"].split(":")[0].split()[-1])
     tip = next(t for t in g["grasp"]["tips"] if t["site"] == beam)
-    assert tip["element_force_N"] == pytest.approx(row["predicted"], rel=1e-12)
+    assert tip["element_force_N"] == pytest.approx(row["element_force_N"], rel=1e-12)
+    light = run_cli("verify", "--set", "die.max_grasp_force_N=0.005", "--json", cwd=die_folder)
+    row = next(x for x in json.loads(light.stdout)["matrix"]
+               if x["requirement"] == "max_grasp_force_N")
+    assert row["verdict"] == "pass" and "on their stops: none" in row["binding_words"]
+    # a grasp force against a grasp force: the grasp at which the beam reaches its limit
+    assert row["predicted"] == pytest.approx(
+        0.005 * row["overload_limit_N"] / row["element_force_N"], rel=1e-9)
+    assert row["margin_rel"] == pytest.approx(row["predicted"] / row["target"] - 1, rel=1e-9)
     far = run_cli("verify", "--set", "die.max_grasp_force_N=90", "--json", cwd=die_folder)
     assert far.returncode == 1
     row = next(x for x in json.loads(far.stdout)["matrix"]

@@ -124,3 +124,27 @@ def test_verify_names_the_elements_beyond_their_overload_limit():
     over = _record(1.0)["over_limit"]
     assert over and all(words in line for words in over) and "3 mm slab" in line
     assert "grasp at" not in run_cli("verify", "--design", TI, "--model", "closed-form").stdout
+
+
+def test_the_predicted_figure_is_a_grasp_force_as_the_target_is():
+    """Target and prediction are one quantity: the grasp at which the deciding element
+    reaches its overload limit (its force in proportion to the grasp), so the margin is
+    prediction over target; the element's own force and limit are said apart."""
+    r = _record(0.05)
+    w = next(it for it in r["elements"] if it["element"] == r["binding_element"])
+    assert not w["on_stop"]
+    assert r["element_force_N"] == w["element_force_N"]
+    assert r["overload_limit_N"] == w["overload_limit_N"]
+    assert r["predicted"] == pytest.approx(0.05 * w["overload_limit_N"] / w["element_force_N"],
+                                           rel=1e-9)
+    assert r["margin_rel"] == pytest.approx(r["predicted"] / r["target"] - 1, rel=1e-9)
+    # the same grasp limit read at another grasp force (the forces grow in proportion)
+    assert _record(0.1)["predicted"] == pytest.approx(r["predicted"], rel=1e-6)
+
+
+def test_an_element_on_its_stop_sets_no_largest_grasp():
+    from tactcad.studies.verification import grasp_force_columns
+
+    assert grasp_force_columns(2.0, 0.5, on_stop=True) == {"predicted": None,
+                                                           "margin_rel": None}
+    assert grasp_force_columns(2.0, 0.5, on_stop=False)["predicted"] == pytest.approx(3.0)

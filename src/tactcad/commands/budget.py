@@ -221,7 +221,8 @@ def readout_alone_lines(unit: dict, budget) -> list[str]:
     """How a unit's read-out term differs from ``tactcad readout``'s K_obj resolution, as
     text: the unit alone (eq. 1-3, the same force, noise and K_obj, 1 sigma) and the coupled
     term over it, not summed; and the K_obj it reads none of (its own resolution past the
-    required ``kobj_resolution_rel``), if any."""
+    required ``kobj_resolution_rel`` beyond the level's error), if any, and the K_obj where
+    whether it reads is undecided inside that error."""
     lines = ["| unit alone: tactcad readout's K_obj resolution (1 sigma; not summed) | "
              + " | ".join(_pct(x) for x in unit["readout_alone_rel"]) + " |",
              "| read-out noise on the coupled sample / unit alone | "
@@ -236,6 +237,16 @@ def readout_alone_lines(unit: dict, budget) -> list[str]:
             f"{_pct(budget.notes['readable_within_rel'])} (requirements.kobj_resolution_rel; "
             f"K_r / K_m = {unit['K_r_N_per_mm'] / unit['K_m_N_per_mm']:.4g}), as tactcad "
             f"verify's readable K_obj range judges; its read-out term is unreadable there")
+    open_ = [k for k, o in zip(budget.k_obj, unit.get("reads_kobj_undecided", ())) if o]
+    if open_:
+        lines.append(
+            f"  unit {unit['reference_element']}/{unit['measuring_element']} at "
+            + ", ".join(f"{k:.3g}" for k in open_)
+            + f" N/mm: alone it resolves K_obj within the required "
+            f"{_pct(budget.notes['readable_within_rel'])} only at some K and grid strains "
+            f"inside {budget.model}'s error on them: whether it reads there is undecided at "
+            f"this level (its terms summed as read; verify's accuracy there is at best "
+            f"undecided)")
     return lines
 
 

@@ -875,44 +875,82 @@ def _percent(rel: float) -> str:
 
 
 def accuracy_refusal(asked_rel: float, reached_rel: float, what: str,
-                     basis: str) -> DesignError:
+                     basis: str, error_rel: float | None = None) -> DesignError:
     """The refusal of a ``--kobj-accuracy`` tighter than a design reaches: the accuracy
     asked, the best one reached (relative and in %) and the option to paste, so that it
-    never names a force or contradicts itself.
+    never names a force or contradicts itself. The option pasted is the accuracy the design
+    meets beyond the figure's own error estimate (:func:`decided_accuracy`), so that the
+    level that judged it decides it (a figure inside its error would be left to ``verify``'s
+    ladder).
 
     Args:
         asked_rel: ``--kobj-accuracy`` (relative).
         reached_rel: the best accuracy the design reaches (relative; inf when none).
         what: the design's words ("this design", "this die").
         basis: what the accuracy is (the budget's words).
+        error_rel: the relative error estimate of ``reached_rel`` (None: none, exact).
 
     Returns:
         The :class:`DesignError` naming ``--kobj-accuracy``.
     """
-    allowed = (f">= {_up2(reached_rel)} for {what}" if math.isfinite(reached_rel)
+    decided = decided_accuracy(reached_rel, error_rel)
+    allowed = (f">= {_up2(decided)} for {what}" if math.isfinite(reached_rel)
                else f"none for {what}")
     return DesignError("--kobj-accuracy", asked_rel, allowed,
                        f"asked {_percent(asked_rel)}; the best {what} reaches is "
-                       f"{_percent(reached_rel)}: {basis}",
-                       alternatives=_accuracy_paste(reached_rel))
+                       f"{_percent(reached_rel)}{_error_words(error_rel)}: {basis}",
+                       alternatives=_accuracy_paste(reached_rel, error_rel))
 
 
-def accuracy_words(asked_rel: float | None, reached_rel: float | None) -> str:
+def decided_accuracy(reached_rel: float, error_rel: float | None) -> float:
+    """The least accuracy (relative) a design is judged to meet beyond the error estimate
+    of what it reaches: ``reached_rel`` x (1 + ``error_rel``), a hair beyond
+    (:data:`tactcad.studies.verification.ROOM_BEYOND_ERROR`), as a derived requirement is
+    padded; ``reached_rel`` itself without an error.
+
+    Args:
+        reached_rel: the accuracy reached (relative; inf when none).
+        error_rel: its relative error estimate, or None.
+
+    Returns:
+        The relative accuracy (inf stays inf).
+    """
+    from tactcad.studies.verification import ROOM_BEYOND_ERROR
+
+    if error_rel is None or not math.isfinite(error_rel) or error_rel <= 0:
+        return reached_rel
+    return reached_rel * (1.0 + error_rel) * (1.0 + ROOM_BEYOND_ERROR)
+
+
+def _error_words(error_rel: float | None) -> str:
+    """`` +- 4.49 % of it (the budget's own uncertainty)`` for an error estimate, else ""."""
+    if error_rel is None or not math.isfinite(error_rel) or error_rel <= 0:
+        return ""
+    return f" +- {100 * error_rel:.3g} % of it (the budget's own uncertainty)"
+
+
+def accuracy_words(asked_rel: float | None, reached_rel: float | None,
+                   error_rel: float | None = None) -> str:
     """A missed ``--kobj-accuracy`` in words: the accuracy asked, the best one reached (in
-    %) and the option to paste (none when nothing reads K_obj)."""
+    %, with its error estimate ``error_rel`` where given) and the option to paste (none
+    when nothing reads K_obj)."""
     reached = math.inf if reached_rel is None else float(reached_rel)
-    paste = _accuracy_paste(reached)
+    paste = _accuracy_paste(reached, error_rel)
     return (f"--kobj-accuracy asked {_percent(asked_rel) if asked_rel is not None else '?'}; "
-            f"the best this design reaches is {_percent(reached)}"
+            f"the best this design reaches is {_percent(reached)}{_error_words(error_rel)}"
             + (f"; to paste: {paste[0]['option']}" if paste else ""))
 
 
-def _accuracy_paste(reached: float) -> list[dict]:
-    """``--kobj-accuracy`` at what a design reaches (rounded up), when finite and <= 10."""
-    if not (math.isfinite(reached) and 0 < reached <= 10):
+def _accuracy_paste(reached: float, error_rel: float | None = None) -> list[dict]:
+    """``--kobj-accuracy`` at what a design reaches beyond its error estimate
+    (:func:`decided_accuracy`, rounded up), when finite and <= 10."""
+    decided = decided_accuracy(reached, error_rel)
+    if not (math.isfinite(decided) and 0 < decided <= 10):
         return []
-    return [{"option": f"--kobj-accuracy {_up2(reached)}",
-             "words": "the accuracy this design reaches over the K_obj range"}]
+    beyond = ("" if decided == reached else
+              ", beyond its error estimate, so that the closed form decides it")
+    return [{"option": f"--kobj-accuracy {_up2(decided)}",
+             "words": f"the accuracy this design reaches over the K_obj range{beyond}"}]
 
 
 def with_kobj_accuracy(result, accuracy_rel: float, refuse: bool = False):
@@ -1030,7 +1068,8 @@ def refuse_missed_accuracy(records: list[dict], accuracy_rel: float) -> None:
     reached = row.get("predicted")
     raise accuracy_refusal(accuracy_rel, math.inf if reached is None else float(reached),
                            "this design", "the root sum square of its K_obj error budget "
-                           "after correction, worst over the K_obj range (tactcad budget)")
+                           "after correction, worst over the K_obj range (tactcad budget)",
+                           row.get("error_estimate_rel"))
 
 
 def _reachable_grasp(plan, stated) -> list[dict]:
@@ -1696,7 +1735,8 @@ def verification_summary(asked: str, level: str | None, records: list[dict]) -> 
             "requirements": [{"requirement": r["requirement"], "verdict": r["verdict"],
                               "margin_rel": r.get("margin_rel"),
                               "decided_by": r.get("decided_by", r.get("model", level)),
-                              "target": r.get("target"), "predicted": r.get("predicted")}
+                              "target": r.get("target"), "predicted": r.get("predicted"),
+                              "error_estimate_rel": r.get("error_estimate_rel")}
                              for r in records]}
 
 
@@ -1848,7 +1888,8 @@ def verification_lines(v: dict | None) -> list[str]:
             out.append(f"  {q['requirement']}: {q['verdict'].upper()}{margin} "
                        f"({q['decided_by'] or 'no level decides it'})")
             if q["requirement"] == "kobj_accuracy_rel" and q["verdict"] == "fail":
-                out.append("    " + accuracy_words(q.get("target"), q.get("predicted")))
+                out.append("    " + accuracy_words(q.get("target"), q.get("predicted"),
+                                                       q.get("error_estimate_rel")))
     out.append("verify: no requirement fails" if v["passed"] else
                "verify: a requirement FAILS: the design is written, and `tactcad verify` "
                "reports the same")

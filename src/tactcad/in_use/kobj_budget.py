@@ -311,17 +311,77 @@ def unit_alone_resolution_rel(ctx: Context, unit: Unit, op: Operating) -> np.nda
 
 
 def unit_reads(ctx: Context, unit: Unit, op: Operating) -> np.ndarray:
-    """Where the unit reads K_obj: its own resolution (:func:`unit_alone_resolution_rel`)
-    within ``ctx.readable_within_rel``, as ``verify``'s readable range judges it
-    (:func:`tactcad.mechanics.resolution.reads_within`). The coupling moves R even between
-    springs of one K; without K_r / K_m the unit has nothing of its own to read.
+    """Where the unit reads K_obj, or may within the level's error: its own resolution
+    (:func:`unit_alone_resolution_rel`) within ``ctx.readable_within_rel``, as ``verify``'s
+    readable range judges it (:func:`tactcad.mechanics.resolution.reads_within`), at its
+    nominal K or at any K and grid strain its level's error allows
+    (:func:`resolution_bounds_rel`). A unit that misses the required resolution only
+    inside that error is not judged unreadable: whether it reads there is undecided
+    (:func:`unit_reads_undecided`), and its terms are summed as read. The coupling moves R
+    even between springs of one K; without K_r / K_m the unit has nothing of its own to
+    read.
 
     Returns:
         A boolean array over the grid of ``op``.
     """
     from tactcad.mechanics.resolution import reads_within
 
-    return reads_within(unit_alone_resolution_rel(ctx, unit, op), ctx.readable_within_rel)
+    best, _ = resolution_bounds_rel(ctx, unit, op)
+    return reads_within(best, ctx.readable_within_rel)
+
+
+def unit_reads_undecided(ctx: Context, unit: Unit, op: Operating) -> np.ndarray:
+    """Where the level cannot tell whether the unit reads K_obj: its own resolution within
+    ``ctx.readable_within_rel`` at some K and grid strain inside the level's error and
+    beyond it at others (:func:`resolution_bounds_rel`).
+
+    Returns:
+        A boolean array over the grid of ``op``.
+    """
+    from tactcad.mechanics.resolution import reads_within
+
+    best, worst = resolution_bounds_rel(ctx, unit, op)
+    return reads_within(best, ctx.readable_within_rel) & \
+        ~reads_within(worst, ctx.readable_within_rel)
+
+
+def resolution_bounds_rel(ctx: Context, unit: Unit, op: Operating
+                          ) -> tuple[np.ndarray, np.ndarray]:
+    """The least and the largest of the unit's own K_obj resolution
+    (:func:`unit_alone_resolution_rel`) at each K_obj with each K moved by its level's error
+    estimate (``ctx.k_error``, every sign combination) and each force resolution by its grid
+    strain's error (a strain read e low leaves it 1 / (1 - e) coarser, e high 1 / (1 + e)
+    finer), as verify's K_obj resolution record bounds its own
+    (:func:`tactcad.studies.verification.worst_and_error`).
+
+    Args:
+        ctx, unit: the design's context and the sensing unit.
+        op: its operating point (the K_obj grid, N/mm, and the reference force, N).
+
+    Returns:
+        (least, largest) relative resolution over the grid (the largest inf where a grid
+        strain's error reaches 1).
+    """
+    from tactcad.mechanics.resolution import unit_resolution
+    from tactcad.mechanics.readout_chain import grid_strain_error_rel
+
+    nominal = unit_alone_resolution_rel(ctx, unit, op)
+    if not math.isfinite(ctx.readable_within_rel):  # every unit reads: nothing to bound
+        return nominal, nominal
+    df = _force_resolutions(ctx)
+    part = lambda n: ctx.plan.element(n).geometry.part_name  # noqa: E731
+    r, m = part(unit.reference), part(unit.measuring)
+    er, em = float(ctx.k_error.get(r, 0.0)), float(ctx.k_error.get(m, 0.0))
+    moved = [nominal] + [
+        unit_resolution(op.k_m * (1 + sm * em), op.k_r * (1 + sr * er), op.k_obj, op.force_r,
+                        df[m]["dF"], force_resolution_reference_N=df[r]["dF"]
+                        )["K_obj_resolution_rel"]
+        for sr in (-1, 1) for sm in (-1, 1)]
+    e = max(grid_strain_error_rel(df[p]["eps"]) for p in (r, m))
+    moved = np.array(moved, float)
+    low = np.min(moved, axis=0) / (1.0 + e)
+    high = np.max(moved, axis=0) / (1.0 - e) if e < 1.0 else np.full(low.shape, np.inf)
+    return low, high
 
 
 def deflection_resolution_mm(ctx: Context, number: int) -> float:
@@ -1332,6 +1392,7 @@ def unit_budget(ctx: Context, unit: Unit, k_obj: np.ndarray) -> dict:
             "K_r_N_per_mm": op.k_r, "K_m_N_per_mm": op.k_m,
             "R": listed(op.ratio), "force_measuring_N": listed(op.force_m),
             "reads_kobj": unit_reads(ctx, unit, op).tolist(),
+            "reads_kobj_undecided": unit_reads_undecided(ctx, unit, op).tolist(),
             "readout_alone_rel": listed(alone),
             "readout_coupled_over_alone": listed(coupled_readout_noise_rel(ctx, unit, op)
                                                  / alone),
@@ -1387,13 +1448,16 @@ class KobjBudget:
         RSS, worst case, dominant source and the budget's own uncertainty."""
         if not self.units:
             return {"unit": [], "rss_rel": [], "worst_case_rel": [], "dominant": [],
-                    "uncertainty_rel": []}
+                    "reads_undecided": [], "uncertainty_rel": []}
         best = reading_unit_index(self.units)
         pick = lambda key: [self.units[b][key][i] for i, b in enumerate(best)]  # noqa: E731
         return {"unit": [f"{self.units[b]['reference_element']}/"
                          f"{self.units[b]['measuring_element']}" for b in best],
                 "rss_rel": pick("rss_rel"), "worst_case_rel": pick("worst_case_rel"),
                 "dominant": pick("dominant"),
+                "reads_undecided": [bool(self.units[b].get("reads_kobj_undecided",
+                                                           [False] * len(best))[i])
+                                    for i, b in enumerate(best)],
                 "uncertainty_rel": [self.units[b]["uncertainty_rel"] for b in best]}
 
     def worst_array_rss(self) -> tuple[float, float] | None:
@@ -1533,7 +1597,11 @@ def kobj_budget(plan: Plan, kobj_range: tuple[float, float], force_N: float,
                          "the range), readout_coupled_over_alone the term over it. A unit "
                          f"whose own resolution exceeds {readable_within_rel:.4g} (the "
                          "required kobj_resolution_rel, as verify's readable range) reads no "
-                         "K_obj there (reads_kobj false): its term and sums are unreadable",
+                         "K_obj there (reads_kobj false): its term and sums are unreadable; "
+                         "where it misses or meets it only inside the level's error on it "
+                         "(each K by its error, each grid strain by its own), whether it "
+                         "reads is undecided (reads_kobj_undecided) and its terms are summed "
+                         "as read",
         "readable_within_rel": float(readable_within_rel),
         "totals": "RSS and worst-case sum of the contributions after correction (as a "
                   "calibrated, corrected sensor reads); *_before_rel without correction",

@@ -931,13 +931,15 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements,
         return None
     budget = budget or design_kobj_budget(plan, fig, req)
     a = budget.array
-    items = [judged({"K_obj_N_per_mm": k, "unit": u, "rss_rel": rss, "dominant": dom,
-                     "error_estimate_rel": unc,
-                     "margin_rel": -1.0 if rss is None  # no unit reads it
-                     else target / rss - 1.0 if rss > 0 and math.isfinite(rss)
-                     else (None if rss == 0 else -1.0)})
-             for k, u, rss, dom, unc in zip(budget.k_obj, a["unit"], a["rss_rel"],
-                                            a["dominant"], a["uncertainty_rel"])]
+    items = [undecided_reading(judged(
+                {"K_obj_N_per_mm": k, "unit": u, "rss_rel": rss, "dominant": dom,
+                 "error_estimate_rel": unc, "reads_undecided": open_,
+                 "margin_rel": -1.0 if rss is None  # no unit reads it
+                 else target / rss - 1.0 if rss > 0 and math.isfinite(rss)
+                 else (None if rss == 0 else -1.0)}))
+             for k, u, rss, dom, unc, open_ in zip(budget.k_obj, a["unit"], a["rss_rel"],
+                                                   a["dominant"], a["uncertainty_rel"],
+                                                   a["reads_undecided"])]
     if not items:  # no unit: nothing reads K_obj, so the accuracy cannot be met
         return _record("kobj_accuracy_rel", target, None, math.inf, -1.0, fig.model, False,
                        basis="no element is softer than its row's reference")
@@ -951,6 +953,17 @@ def kobj_accuracy_record(plan: Plan, fig: Figures, req: Requirements,
                    delta_T_K=budget.delta_T_K,
                    basis="RSS of the K_obj error budget after correction (tactcad budget), "
                          "each K_obj read by its best unit")
+
+
+def undecided_reading(item: dict) -> dict:
+    """An accuracy point whose unit reads K_obj within the required resolution only inside
+    the level's error (``reads_undecided``: the budget's
+    :func:`tactcad.in_use.kobj_budget.unit_reads_undecided`) cannot pass: its RSS holds
+    where the unit reads, and none is read where it does not; a pass becomes
+    ``undecided`` (a failure beyond the error stays one, read or not)."""
+    if item.get("reads_undecided") and item["verdict"] == "pass":
+        return {**item, "verdict": "undecided"}
+    return item
 
 
 #: The verification matrix's name of the tip-height row.
@@ -1036,6 +1049,27 @@ def element_overload_limits_N(plan: Plan, fig: Figures,
     return out
 
 
+def grasp_force_columns(target_N: float, margin_rel: float, on_stop: bool) -> dict:
+    """The ``predicted`` and ``margin_rel`` of a ``max_grasp_force_N`` row in the target's
+    own quantity, the grasp force (N): the grasp at which the deciding element reaches its
+    overload limit, its force in proportion to the grasp (``target_N`` x limit / force),
+    so margin = predicted / target - 1 = limit / force - 1. Both None when that element
+    rests on its stop: the stop holds its force whatever the grasp, so the springs set no
+    largest grasp (each element's own margin stays in the record's items).
+
+    Args:
+        target_N: the stated grasp force (N). margin_rel: the deciding element's overload
+            limit over its force at that grasp, less one. on_stop: whether it rests on
+            its stop.
+
+    Returns:
+        ``{"predicted": N or None, "margin_rel": relative}``.
+    """
+    if on_stop:
+        return {"predicted": None, "margin_rel": None}
+    return {"predicted": target_N * (1.0 + margin_rel), "margin_rel": margin_rel}
+
+
 def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict | None:
     """``max_grasp_force_N`` when the design states it (None otherwise): the grasp's force
     mode at that grasp force (:func:`tactcad.in_use.grasp_experiment.design_grasp_at_force`:
@@ -1045,7 +1079,10 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
     strain), margin limit / force - 1, error :func:`grasp_error_rel`, judged on its own
     (``elements``), a hard stop taking the force beyond its engagement; the record shows
     the element that decides it (:func:`deciding_item`) and the elements past the rated
-    full-scale force (on their stops or not). A grasp force the jaw cannot reach fails."""
+    full-scale force (on their stops or not). A grasp force the jaw cannot reach fails.
+    ``predicted`` is a grasp force, as the target is (:func:`grasp_force_columns`); the
+    deciding element's force and overload limit, which the margin is taken on, are
+    ``element_force_N`` and ``overload_limit_N``."""
     from tactcad.design.requirements_section import stated_max_grasp_force
     from tactcad.errors import DesignError
     from tactcad.in_use.grasp_experiment import (default_assumptions, design_grasp_at_force,
@@ -1086,12 +1123,18 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
              "degrees) puts "
              f"{w['element_force_N']:.4g} N on the spring, overload limit "
              f"{w['overload_limit_N']:.4g} N"
+             + ("" if w["on_stop"] else
+                f" (predicted: the grasp at which element {w['element']} reaches it, its "
+                "force in proportion to the grasp)")
              + (f"; {len(past_fatigue)} of {len(items)} elements past their fatigue limits, "
                 "each such grasp a cycle beyond them (not judged here: fatigue_at_max_grasp "
                 "lists them)" if past_fatigue else ""))
-    return _record("max_grasp_force_N", target, w["element_force_N"], error, w["margin_rel"],
-                   fig.model, not over, verdict=w["verdict"], binding_element=w["element"],
-                   binding_words=words,
+    columns = grasp_force_columns(target, w["margin_rel"], w["on_stop"]) \
+        if w["margin_rel"] is not None else {"predicted": None, "margin_rel": None}
+    return _record("max_grasp_force_N", target, columns["predicted"], error,
+                   columns["margin_rel"], fig.model, not over, verdict=w["verdict"],
+                   binding_element=w["element"], element_force_N=w["element_force_N"],
+                   overload_limit_N=w["overload_limit_N"], binding_words=words,
                    rated_force_N=rated, elements=items, grasp=grasp_summary(result),
                    over_limit=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
                                f"its overload limit {it['overload_limit_N']:.4g} N"
@@ -1209,6 +1252,14 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     Each record holds the figures of the level that decided it, ``decided_by``
     (that level, or None when still undecided) and ``levels_tried``.
 
+    A level decides a requirement a cheaper level left undecided only when it is at least
+    as accurate on it (its record's error estimate no larger, :func:`less_accurate`): the
+    ladder's middle levels can be less accurate than the fem3d-corrected closed form (fem2d's
+    plane model), so a verdict inside the closed form's error is not settled by one outside
+    a wider error. Such a verdict is kept beside the undecided record
+    (``less_accurate_levels``) and the ladder climbs on; at its top the requirement stays
+    undecided with the most accurate level's record.
+
     Args:
         stress: as :func:`verification_matrix` (needed once a FEM level runs).
         levels: the ladder to climb; default every level, cheapest first.
@@ -1226,6 +1277,9 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     chosen: dict[str, dict] = {}
     order: list[str] = []
     spent: list[dict] = []
+    # per requirement left undecided, its most accurate undecided record so far: a level
+    # less accurate than it (a larger error estimate) does not decide it
+    open_at: dict[str, dict] = {}
     for i, level in enumerate(ladder):
         open_before = [k for k in order if k not in chosen] if order else None
         t0 = time.perf_counter()
@@ -1235,21 +1289,72 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
                       "undecided_before": open_before})
         order = order or [r["requirement"] for r in records]
         top = i == len(ladder) - 1
+        for r in records:
+            before = open_at.get(r["requirement"])
+            if r["verdict"] != "undecided" and before is not None \
+                    and less_accurate(r, before):
+                r["less_accurate_than"] = before["model"]
         # a record another level computes the same way (the K band is always the
         # closed form's) cannot be decided by climbing: it stays undecided
         climbable = [r for r in records if r["requirement"] not in chosen
-                     and r["verdict"] == "undecided" and not r["level_fixed"]]
+                     and (r["verdict"] == "undecided" or "less_accurate_than" in r)
+                     and not r["level_fixed"]]
         for r in records:
             key = r["requirement"]
             if key in chosen:
                 continue
-            if r["verdict"] != "undecided" or top or not climbable:
-                r["decided_by"] = None if r["verdict"] == "undecided" else level
-                r["levels_tried"] = list(ladder[:i + 1])
-                chosen[key] = r
+            if "less_accurate_than" in r:
+                # the most accurate level's undecided record, this level's verdict beside it
+                open_at[key] = ladder_undecided(open_at[key], r)
+                if not (top or not climbable):
+                    continue
+                r = open_at[key]
+            elif r["verdict"] == "undecided" and not (top or not climbable):
+                if key not in open_at or not less_accurate(r, open_at[key]):
+                    open_at[key] = r
+                continue
+            r["decided_by"] = None if r["verdict"] == "undecided" else level
+            r["levels_tried"] = list(ladder[:i + 1])
+            chosen[key] = r
         if len(chosen) == len(order):
             break
     return [chosen[k] for k in order], spent
+
+
+def less_accurate(record: dict, than: dict) -> bool:
+    """Whether ``record``'s error estimate is larger than ``than``'s (both finite): the
+    level that made it is less accurate on that requirement than the one that made
+    ``than``, so its verdict cannot settle what ``than`` left undecided. A record without a
+    finite error estimate (exact, or none) is not compared (False).
+
+    Args:
+        record, than: verification records (``error_estimate_rel``, relative or None).
+
+    Returns:
+        True when both errors are finite and ``record``'s is the larger.
+    """
+    a, b = record.get("error_estimate_rel"), than.get("error_estimate_rel")
+    return a is not None and b is not None and math.isfinite(a) and math.isfinite(b) and a > b
+
+
+def ladder_undecided(open_record: dict, later: dict) -> dict:
+    """The record :func:`verification_auto` keeps for a requirement a level left undecided
+    and only less accurate levels decided: the undecided one (its figures, its level),
+    with the less accurate level's verdict, margin and error said beside it
+    (``less_accurate_levels``).
+
+    Args:
+        open_record: the most accurate undecided record. later: a less accurate level's.
+
+    Returns:
+        A copy of ``open_record`` (verdict ``undecided``).
+    """
+    out = dict(open_record)
+    out["less_accurate_levels"] = [*open_record.get("less_accurate_levels", []),
+                                   {"model": later["model"], "verdict": later["verdict"],
+                                    "margin_rel": later["margin_rel"],
+                                    "error_estimate_rel": later["error_estimate_rel"]}]
+    return out
 
 
 # ---------------------------------------------------------------------------

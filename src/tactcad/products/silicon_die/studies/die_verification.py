@@ -119,9 +119,14 @@ def _grasp_row(plan, mount) -> dict:
     (:func:`tactcad.products.silicon_die.in_use.die_grasp.grasp_at_force`); each beam's force
     on its spring against its breaking force (its root's peak at the mean strength of etched
     silicon), a hard stop taking the rest; fails when a beam passes it or the jaw cannot
-    reach the force."""
+    reach the force. ``predicted`` is a grasp force, as the target is
+    (:func:`grasp_force_columns`; the deciding beam's force and breaking force are
+    ``element_force_N`` and ``overload_limit_N``). Undecided, not passed, where a post rests
+    on its stop (the posts' and the cavity floor's strength under it is not judged) or the
+    die's face meets the tissue (past the punch model)."""
     from tactcad.errors import DesignError
     from tactcad.products.silicon_die.in_use.die_grasp import grasp_at_force
+    from tactcad.studies.verification import grasp_force_columns
 
     target = plan.max_grasp_force_N
     base = {"requirement": "max_grasp_force_N", "target": target, "error_estimate_rel": None,
@@ -142,8 +147,13 @@ def _grasp_row(plan, mount) -> dict:
     face = [t["site"] for t in result.tips if t.get("face_in_contact")]
     stop_N = max(t["stop_force_N"] for t in result.tips)
     margin = worst["overload_limit_N"] / worst["element_force_N"] - 1.0
-    return {**base, "predicted": worst["element_force_N"], "margin_rel": margin,
-            "verdict": "fail" if over else "pass",
+    # a stop's load and the face in the tissue lie outside what the row judges: a grasp
+    # the beams survive is then undecided, not passed
+    unjudged = bool(over == [] and (stopped or face))
+    return {**base, **grasp_force_columns(target, margin, worst["on_stop"]),
+            "element_force_N": worst["element_force_N"],
+            "overload_limit_N": worst["overload_limit_N"],
+            "verdict": "fail" if over else "undecided" if unjudged else "pass",
             "binding_words": f"beam {worst['site']}: {1e3 * worst['element_force_N']:.3g} mN "
                              f"on its spring at the {target:g} N grasp (jaw at "
                              f"{result.angle_deg:.3g} degrees), breaking force "
@@ -154,7 +164,11 @@ def _grasp_row(plan, mount) -> dict:
                              + (f"; the die's face in the tissue beside posts "
                                 f"{', '.join(map(str, face))} (past the punch model)"
                                 if face else "")
-                             + (f"; past breaking: {', '.join(map(str, over))}" if over else "")}
+                             + (f"; past breaking: {', '.join(map(str, over))}" if over else "")
+                             + ("" if worst["on_stop"] else
+                                f"; predicted: the grasp at which beam {worst['site']} "
+                                f"reaches its breaking force, its force in proportion to "
+                                f"the grasp")}
 
 
 def worst_budget_rel(plan) -> float:
