@@ -928,6 +928,7 @@ class Project:
         """
         import tempfile
 
+        from tactcad.assembly.rig_models import get_scene_spec
         from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
         from tactcad.export.reuse import reuse_state
         from tactcad.export.run import check_out_dir, export, export_scenes
@@ -942,6 +943,8 @@ class Project:
             if on_group is not None:
                 on_group(group, list(found))
 
+        for name in scenes or ():  # an unknown scene is refused before any check runs
+            get_scene_spec(self.validated, name)
         self._report = report
         to_run = groups_to_run(scenes)
         context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)

@@ -8,7 +8,7 @@ import time
 from tactcad.commands.options import output_file, output_folder
 from tactcad.checks.check_result import counts_text, status_counts, status_of
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
-                              load_from_args)
+                              load_from_args, refuse_unknown_scenes)
 from tactcad.commands.finite_json import dumps
 
 
@@ -64,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
     if found is not None and not found[1].is_default:  # another product's check (a die's)
         return found[1].hook("check")(found[0], args)
     project = load_from_args(args)
+    refuse_unknown_scenes(project, args.scene)  # every option's value before any check runs
     report = progress_from_args(args)
     t0 = time.perf_counter()
 
