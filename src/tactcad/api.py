@@ -970,7 +970,8 @@ class Project:
                                   parts=self._cache)
                     edited, stale = None, ()  # the manifest is left as it was: not compared
                 else:
-                    report(f"exporting to {folder} first: {refusal}")
+                    report(f"exporting to {folder} first: {refusal}" if out is not None else
+                           f"exporting to the temporary folder {folder} first (no out)")
                     export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
                     stale = ()  # written from the project's files now
@@ -978,8 +979,9 @@ class Project:
                            replace(context, folder=folder, edited=edited, stale=stale), done)
         finally:
             self._report = _quiet
+        # a temporary folder held no export to refuse: only a given out's refusal is said
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
-                           refusal, None if out is None else str(out))
+                           None if out is None else refusal, None if out is None else str(out))
 
 
 def _edits_said(edited: Mapping[str, str], stale: Sequence[str] = ()) -> str:
@@ -1659,7 +1661,8 @@ class CheckReport:
         groups: (group name, its :class:`~tactcad.checks.check_result.CheckResult` s)
             in the order they ran.
         reused_export: the export folder was checked as it was.
-        export_refusal: why it was not (None when reused).
+        export_refusal: why the export in ``out`` was not (None when reused, and when
+            ``out`` was None: a temporary folder holds no export to refuse).
         out: the folder checked (None: a temporary one).
         warnings: what the export and the checks warned of, one line each (alike ones
             folded), as ``tactcad check`` says them.

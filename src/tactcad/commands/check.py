@@ -66,6 +66,7 @@ def run(args: argparse.Namespace) -> int:
     project = load_from_args(args)
     refuse_unknown_scenes(project, args.scene)  # every option's value before any check runs
     report = progress_from_args(args)
+    say_the_export_left_unread(args, report)
     t0 = time.perf_counter()
 
     def done(group: str, found: list) -> None:
@@ -98,6 +99,21 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(counts_text(counts))
     return 1 if bad else 0
+
+
+def say_the_export_left_unread(args: argparse.Namespace, report) -> None:
+    """Without ``--out`` the check exports to a temporary folder: where the working folder's
+    ``exports`` holds an export (its ``manifest.json``), one progress line says it is left
+    unread and that ``--out exports`` checks it as it is.
+
+    Args:
+        args: the check's options (``out``). report: the run's progress line writer.
+    """
+    from pathlib import Path
+
+    if args.out is None and (Path("exports") / "manifest.json").is_file():
+        report("exports/ holds an export, not read: without --out the design is exported to a "
+               "temporary folder and checked there; --out exports checks that export as it is")
 
 
 def junit_target(path: str) -> None:
