@@ -928,6 +928,7 @@ class Project:
         """
         import tempfile
 
+        from tactcad.assembly.rig_models import get_scene_spec
         from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
         from tactcad.export.reuse import reuse_state
         from tactcad.export.run import check_out_dir, export, export_scenes
@@ -942,6 +943,8 @@ class Project:
             if on_group is not None:
                 on_group(group, list(found))
 
+        for name in scenes or ():  # an unknown scene is refused before any check runs
+            get_scene_spec(self.validated, name)
         self._report = report
         to_run = groups_to_run(scenes)
         context = CheckContext(self.plan, Path("."), self._cache, self.validated, scenes)
@@ -967,7 +970,8 @@ class Project:
                                   parts=self._cache)
                     edited, stale = None, ()  # the manifest is left as it was: not compared
                 else:
-                    report(f"exporting to {folder} first: {refusal}")
+                    report(f"exporting to {folder} first: {refusal}" if out is not None else
+                           f"exporting to the temporary folder {folder} first (no out)")
                     export(self.validated, folder, log=_quiet, store=_store(cache), parts=self._cache,
                            select=lambda jobs: with_progress(jobs, report))
                     stale = ()  # written from the project's files now
@@ -975,8 +979,9 @@ class Project:
                            replace(context, folder=folder, edited=edited, stale=stale), done)
         finally:
             self._report = _quiet
+        # a temporary folder held no export to refuse: only a given out's refusal is said
         return CheckReport(tuple((g, tuple(r)) for g, r in groups), refusal is None,
-                           refusal, None if out is None else str(out))
+                           None if out is None else refusal, None if out is None else str(out))
 
 
 def _edits_said(edited: Mapping[str, str], stale: Sequence[str] = ()) -> str:
@@ -1674,7 +1679,8 @@ class CheckReport:
         groups: (group name, its :class:`~tactcad.checks.check_result.CheckResult` s)
             in the order they ran.
         reused_export: the export folder was checked as it was.
-        export_refusal: why it was not (None when reused).
+        export_refusal: why the export in ``out`` was not (None when reused, and when
+            ``out`` was None: a temporary folder holds no export to refuse).
         out: the folder checked (None: a temporary one).
         warnings: what the export and the checks warned of, one line each (alike ones
             folded), as ``tactcad check`` says them.

@@ -814,14 +814,23 @@ def _tomls_where(folder: str | Path, holds) -> list[Path]:
     return found
 
 
-def default_design(folder: str | Path = ".") -> Path:
+def default_design(folder: str | Path = ".", refuse_unreadable: bool = True) -> Path:
     """The design a command works on when none is named: the one design file
     of the project folder ``folder`` (the working folder; an array's or a silicon
     die's), else the shipped example ``macro_array`` (the paper's 2 x 5 array).
 
+    Args:
+        folder: the working folder.
+        refuse_unreadable: refuse a folder with no design file and a ``*.toml`` file that
+            cannot be read (:func:`refuse_unreadable_tomls`); False passes such files over
+            (``design``, which writes a new file and names its base on stderr).
+
+    Returns:
+        The design file's path.
+
     Raises:
         DesignError: the folder holds several design files (``--design`` must choose), or
-            none and a ``*.toml`` file that cannot be read (:func:`refuse_unreadable_tomls`).
+            none and a ``*.toml`` file that cannot be read (with ``refuse_unreadable``).
     """
     from tactcad.design.array_plan import DEFAULT_DESIGN
 
@@ -830,11 +839,34 @@ def default_design(folder: str | Path = ".") -> Path:
         raise DesignError("--design", None, "one of " + ", ".join(p.name for p in found),
                           f"{len(found)} design files in {Path(folder).resolve().name or '/'}")
     if not found:
-        refuse_unreadable_tomls(Path(folder))
+        if refuse_unreadable:
+            refuse_unreadable_tomls(Path(folder))
         for where in _export_folders(Path(folder)):
             if (export := export_in(where)) is not None:
                 raise _not_in_an_export(Path(folder), where, *export)
     return found[0] if found else DEFAULT_DESIGN
+
+
+def unreadable_tomls(folder: Path) -> list[DesignError]:
+    """The ``*.toml`` files of ``folder`` that cannot be read as TOML, each as the
+    refusal :func:`tactcad.vocabulary.schema.read_toml` gives it (the file, its fault).
+
+    Args:
+        folder: the working folder.
+
+    Returns:
+        One :class:`DesignError` per such file, in name order (empty: all read).
+    """
+    from tactcad.vocabulary.schema import read_toml
+
+    found = []
+    for path in sorted(folder.glob("*.toml")):
+        if path.is_file():
+            try:
+                read_toml(path, "design file")
+            except DesignError as exc:
+                found.append(exc)
+    return found
 
 
 def refuse_unreadable_tomls(folder: Path) -> None:
@@ -846,13 +878,18 @@ def refuse_unreadable_tomls(folder: Path) -> None:
         folder: the working folder, where no design file was found.
 
     Raises:
-        DesignError: the first such file, named with its fault, as ``--design FILE`` names it.
+        DesignError: the first such file, named with its fault, saying it was read because
+            no ``--design`` was given and that ``--design FILE`` chooses the design.
     """
-    from tactcad.vocabulary.schema import read_toml
-
-    for path in sorted(folder.glob("*.toml")):
-        if path.is_file():
-            read_toml(path, "design file")
+    for exc in unreadable_tomls(folder)[:1]:
+        name = Path(str(exc.value)).name
+        raise DesignError(
+            "design file", name, exc.allowed,
+            f"{exc.why}; read as this folder's design file could be, because no --design "
+            f"was given: name the design with --design FILE, or mend or move {name}",
+            alternatives=[{"option": "--design FILE",
+                           "words": "the design to work on; the folder's *.toml files are "
+                                    "then not read"}])
 
 
 #: How far up from the working folder an export is looked for (``exports/step`` is two).

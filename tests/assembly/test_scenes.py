@@ -63,6 +63,27 @@ def test_unknown_scene_lists_the_scenes_and_exits_2(capsys):
     assert cli.main(["export", "--scene", "nope", "--out", "/nonexistent/x"]) == 2
 
 
+def test_an_unknown_check_scene_is_refused_before_any_check_runs(monkeypatch, capsys, tmp_path):
+    """`check --scene nosuch` names --scene and the scenes before the requirements run."""
+    import tactcad
+    from tactcad.checks import groups
+
+    ran = []
+    monkeypatch.setattr(groups, "run_groups", lambda *a, **k: ran.append(a))
+    assert cli.main(["check", "--scene", "nosuch", "--out", str(tmp_path / "exports")]) == 2
+    err = capsys.readouterr().err
+    assert "--scene = 'nosuch'" in err and "requirements:" not in err
+    for n in SCENES:
+        assert n in err
+    assert ran == [] and not (tmp_path / "exports").exists()
+    with pytest.raises(SceneError, match="nosuch"):  # the API's check too
+        tactcad.load().check(None, ["wirecut", "nosuch"], cache=False)
+    assert ran == []
+    assert cli.main(["export", "--scene", "nope", "--out", str(tmp_path / "ex")]) == 2
+    assert "--scene = 'nope'" in capsys.readouterr().err
+    assert not (tmp_path / "ex").exists()
+
+
 def test_a_scene_builds_only_its_parts(plan, project):
     """A fresh cache: `wirecut` never builds the cart, `array` never a bearing."""
     wirecut = _counts_during(lambda: build_scene(project, "wirecut", PartCache(plan)))

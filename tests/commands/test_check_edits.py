@@ -280,3 +280,21 @@ def test_a_read_only_export_is_checked_and_its_review_page_left_with_a_warning(
     else:
         assert "passed" in captured.out and "permission denied" not in captured.out
         assert captured.err.count("checks.js") == 1 and f"tactcad: warning: {said}" in captured.err
+
+
+def test_a_check_without_out_says_no_refusal_of_its_temporary_folder(tmp_path, monkeypatch,
+                                                                     export_files_only, capsys):
+    """Without an out the check's temporary folder held no export: its refusal ("no
+    manifest.json in /tmp/...") is not an error of the run; exports/ left unread is said."""
+    report = tactcad.load().check(None, cache=False)
+    assert len(export_files_only) == 1 and not report.reused_export
+    assert report.export_refusal is None and report.out is None
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "exports").mkdir()
+    (tmp_path / "exports" / "manifest.json").write_text("{}", encoding="utf-8")
+    cli.main(["check", "--json"])
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["export_refusal"] is None and printed["reused_export"] is False
+    cli.main(["check"])
+    err = capsys.readouterr().err
+    assert "--out exports checks that export as it is" in err and "no manifest.json" not in err

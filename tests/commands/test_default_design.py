@@ -75,3 +75,57 @@ def test_design_in_a_die_folder_starts_from_the_shipped_example_and_says_so(tmp_
                      "--set", "sheet.thickness_mm=-1"]) == 2
     err = capsys.readouterr().err
     assert "die5.toml" not in err and "errors in" not in err and "sheet.thickness_mm" in err
+
+
+def test_an_unreadable_toml_of_the_folder_is_passed_over_by_design_and_named(tmp_path,
+                                                                             monkeypatch, capsys):
+    """One *.toml that is no text (or no TOML) in the working folder refused `design --out`,
+    which needs no design file of the folder; a command that looks for the folder's design
+    says the file was read because no --design was given, and how to name one."""
+    import pytest
+
+    from tactcad.commands.design import base_design
+    from tactcad.commands.notices import print_heads
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.project_folder import default_design
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "notes.toml").write_bytes(b"\xff\xfe")
+    (tmp_path / "broken.toml").write_text("a = [\n", encoding="utf-8")
+    print_heads(echo=False)
+    assert base_design(None) == DEFAULT_DESIGN
+    said = " ".join(print_heads(echo=False))
+    assert "passed over broken.toml (not valid TOML" in said and "notes.toml (not a UTF-8" in said
+    with pytest.raises(DesignError) as refused:
+        default_design()
+    text = str(refused.value)
+    assert "broken.toml" in text and "no --design was given" in text and "--design FILE" in text
+    assert refused.value.alternatives[0]["option"] == "--design FILE"
+    assert cli.main(["readout"]) == 2
+    err = capsys.readouterr().err
+    assert "no --design was given" in err and "Traceback" not in err
+
+
+def test_a_jaw_file_loaded_as_a_design_is_named_a_jaw_file(tmp_path, monkeypatch, capsys):
+    """tactcad.load of a jaw file ([grasper_jaw] alone) listed eight missing design tables."""
+    import pytest
+
+    import tactcad
+
+    jaw = tmp_path / "jaw12.toml"
+    jaw.write_text('[grasper_jaw]\nshaft_class_mm = "10"\nwidth_clearance_mm = 3.5\n'
+                   "length_mm = 34.0\nthickness_mm = 5.6\npin_inset_mm = 2.5\n"
+                   "opening_angle_deg = 30.0\n", encoding="utf-8")
+    with pytest.raises(DesignError) as refused:
+        tactcad.load(jaw)
+    text = str(refused.value)
+    assert "jaw file" in text and "--jaw" in text and "errors in" not in text
+    assert refused.value.alternatives[0]["option"] == f"--jaw {jaw}"
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["verify", "--design", "jaw12.toml"]) == 2
+    err = capsys.readouterr().err
+    assert "jaw file" in err and "design --jaw jaw12.toml" in err
+    assert cli.main(["design", "--design", "jaw12.toml", "--kr-over-km", "8", "--kobj-range",
+                     "0.3", "3", "--full-scale-force", "0.05", "--out", "x.toml"]) == 2
+    err = capsys.readouterr().err
+    assert "--design = 'jaw12.toml'" in err and "jaw file" in err and "errors in" not in err

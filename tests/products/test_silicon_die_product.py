@@ -478,3 +478,28 @@ def test_scenes_in_a_dies_folder_lists_the_scene_its_export_writes(die_folder):
         p["part"] for p in scene["groups"]["insert"]}
     r = run_cli("scenes", "wirecut", "--json", cwd=die_folder)
     assert r.returncode == 2 and scene["name"] in json.loads(r.stdout)["error"]["allowed"]
+
+
+def test_a_dies_check_without_out_has_no_refusal_and_names_the_export_left_unread(
+        die_folder, monkeypatch, capsys):
+    """`check --json` without --out said `"export_refusal": "no manifest.json in
+    /tmp/tactcad-die-check-..."` of its own temporary folder; exports/ was passed over
+    without a word."""
+    from tactcad import cli
+    from tactcad.commands import die
+
+    exported = []
+    monkeypatch.setattr(die, "run", lambda args: exported.append(args.out))
+    monkeypatch.chdir(die_folder)
+    (die_folder / "exports").mkdir()
+    (die_folder / "exports" / "manifest.json").write_text("{}", encoding="utf-8")
+    lines = []
+    args = cli.build_parser().parse_args(["check", "--json"])
+    found = die.die_check(die_folder / EXAMPLE.name, args, lines.append)
+    assert len(exported) == 1 and Path(exported[0]).name.startswith("tactcad-die-check-")
+    assert found.export_refusal is None and not found.reused_export
+    said = "\n".join(lines)
+    assert "--out exports checks that export as it is" in said and "no manifest.json" not in said
+    cli.main(["check", "--json"])
+    report = json.loads(capsys.readouterr().out)
+    assert report["export_refusal"] is None and report["reused_export"] is False

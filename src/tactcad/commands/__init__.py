@@ -207,6 +207,30 @@ def project_from_args(args: argparse.Namespace):
     return load_from_args(args).validated
 
 
+def refuse_unknown_scenes(project, names) -> None:
+    """Refuse ``--scene`` names the project has no scene of, before any work (a check's
+    requirements, an export's jobs): the scenes are the design's scenes file's
+    (:attr:`tactcad.api.Project.scenes`).
+
+    Args:
+        project: the loaded :class:`tactcad.api.Project` or its validated project.
+        names: the ``--scene`` values given (``None`` or empty: nothing to check).
+
+    Raises:
+        DesignError: naming ``--scene``, the first unknown name and the project's scenes.
+    """
+    from tactcad.errors import DesignError
+
+    known = list(project.scenes)
+    unknown = [n for n in names or () if n not in known]
+    if unknown:
+        raise DesignError("--scene", unknown[0],
+                          "one of the project's scenes: " + ", ".join(known),
+                          (f"{len(unknown)} unknown scene names ({', '.join(unknown)}); "
+                           if len(unknown) > 1 else "")
+                          + "`tactcad scenes` lists each scene with its parts")
+
+
 def announced_default_design() -> Path:
     """The design a command without ``--design`` works on
     (:func:`tactcad.project_folder.default_design`); where that is the shipped example,

@@ -8,7 +8,7 @@ import time
 from tactcad.commands.options import output_file, output_folder
 from tactcad.checks.check_result import counts_text, status_counts, status_of
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
-                              load_from_args)
+                              load_from_args, refuse_unknown_scenes)
 from tactcad.commands.finite_json import dumps
 
 
@@ -64,7 +64,9 @@ def run(args: argparse.Namespace) -> int:
     if found is not None and not found[1].is_default:  # another product's check (a die's)
         return found[1].hook("check")(found[0], args)
     project = load_from_args(args)
+    refuse_unknown_scenes(project, args.scene)  # every option's value before any check runs
     report = progress_from_args(args)
+    say_the_export_left_unread(args, report)
     t0 = time.perf_counter()
 
     def done(group: str, found: list) -> None:
@@ -97,6 +99,21 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(counts_text(counts))
     return 1 if bad else 0
+
+
+def say_the_export_left_unread(args: argparse.Namespace, report) -> None:
+    """Without ``--out`` the check exports to a temporary folder: where the working folder's
+    ``exports`` holds an export (its ``manifest.json``), one progress line says it is left
+    unread and that ``--out exports`` checks it as it is.
+
+    Args:
+        args: the check's options (``out``). report: the run's progress line writer.
+    """
+    from pathlib import Path
+
+    if args.out is None and (Path("exports") / "manifest.json").is_file():
+        report("exports/ holds an export, not read: without --out the design is exported to a "
+               "temporary folder and checked there; --out exports checks that export as it is")
 
 
 def junit_target(path: str) -> None:

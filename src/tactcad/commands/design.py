@@ -1477,9 +1477,10 @@ def base_design(out: Path | None) -> Path:
     from tactcad.commands import announce_shipped_example
     from tactcad.commands.notices import announce
     from tactcad.design.array_plan import DEFAULT_DESIGN
-    from tactcad.project_folder import default_design, product_of
+    from tactcad.project_folder import default_design, product_of, unreadable_tomls
 
-    found = default_design()  # the folder scanned once
+    # a design needs no file of the folder: an unreadable *.toml is passed over, named
+    found = default_design(refuse_unreadable=False)  # the folder scanned once
     if found != DEFAULT_DESIGN and out is not None and found.resolve() == out.resolve():
         announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
                  f"{found.name}, the file this run replaces; --design names a base")
@@ -1495,6 +1496,11 @@ def base_design(out: Path | None) -> Path:
                  "another base")
         return found
     announce_shipped_example()
+    passed = unreadable_tomls(Path("."))
+    if passed:
+        announce("design: passed over " + ", ".join(
+            f"{Path(str(e.value)).name} (not {e.allowed}: {e.why})" for e in passed)
+            + ", no design file can be read from them; --design FILE names a base")
     return DEFAULT_DESIGN
 
 
@@ -1549,10 +1555,12 @@ def refuse_another_products_base(tables: dict, design: Path) -> None:
     as an array's, listed every array table as missing).
 
     Raises:
-        DesignError: ``--design`` is another product's design file.
+        DesignError: ``--design`` is another product's design file, or a jaw file.
     """
+    from tactcad.design.file_kind import refuse_jaw_file
     from tactcad.products import products
 
+    refuse_jaw_file(tables, design, "--design")
     other = next((p for p in products() if not p.is_default and p.owns(tables)), None)
     if other is not None:
         raise DesignError("--design", str(design), "a stacked design as the base of the "

@@ -741,14 +741,16 @@ def export_die(design: Path, args: argparse.Namespace) -> int:
 @dataclass(frozen=True)
 class DieCheck:
     """A die's check: the die's name, the folder checked (a temporary one, gone since,
-    without ``--out``), why its export was not reused (None: it was), every result in order
-    and their counts by status."""
+    without ``--out``), why the export in ``--out`` was not reused (None: it was, or no
+    ``--out`` was given: a temporary folder holds no export to refuse), every result in
+    order, their counts by status and whether the export was checked as it was."""
 
     name: str
     out: str
     export_refusal: str | None
     checks: tuple
     counts: dict
+    reused_export: bool = False
 
 
 def check_die(design: Path, args: argparse.Namespace) -> int:
@@ -767,7 +769,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
     checks, counts, out = found.checks, found.counts, found.out
     if args.json:
         print(dumps({"design": str(design), "out": out, "junit": getattr(args, "junit", None),
-                     "reused_export": found.export_refusal is None,
+                     "reused_export": found.reused_export,
                      "export_refusal": found.export_refusal,
                      "checks": [{"check": c.check, "subject": c.subject,
                                  "status": c.status, "detail": c.detail} for c in checks],
@@ -804,6 +806,7 @@ def die_check(design: Path, args: argparse.Namespace,
 
     from tactcad.checks.check_result import CheckResult, status_counts
     from tactcad.checks.export_files import edited_results
+    from tactcad.commands.check import say_the_export_left_unread
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
     from tactcad.products.silicon_die.checks.traveller_check import traveller_checks
@@ -822,12 +825,14 @@ def die_check(design: Path, args: argparse.Namespace,
         files = {k: out / v.format(name=name) for k, v in DIE_FILES.items()}
         state = _die_export_state(out, planned, files["record"])
         refusal = state.refusal
+        say_the_export_left_unread(args, report)
         if refusal is None:  # hand edits are left as they are, each a failing check
             report(f"checking the export in {out} as it is"
                    + (f" ({len(state.edited)} file(s) changed or removed by hand since)"
                       if state.edited else " (same design, every file as listed)"))
         else:  # as an array's check does: exported there first, said in one line
-            report(f"exporting to {out} first: {refusal}")
+            report(f"exporting to {out} first: {refusal}" if args.out else
+                   f"exporting to the temporary folder {out} first (no --out)")
             quiet = argparse.Namespace(**{**vars(args), "json": True})
             with contextlib.redirect_stdout(io.StringIO()):
                 run(_die_args(design, quiet, out))
@@ -859,7 +864,8 @@ def die_check(design: Path, args: argparse.Namespace,
             from tactcad.checks.junit import write_junit
 
             write_junit(junit, [(name, checks)], [name])
-        return DieCheck(name, str(out), refusal, tuple(checks), counts)
+        return DieCheck(name, str(out), refusal if args.out else None, tuple(checks), counts,
+                        reused_export=refusal is None)
 
 
 def _die_export_state(out: Path, planned: PlannedDie, record: Path) -> "ExportState":

@@ -8,7 +8,7 @@ import json
 from tactcad.commands.options import output_folder
 from tactcad.atomic import SYSTEM_RULE
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, project_from_args,
-                              progress_from_args, store_from_args)
+                              progress_from_args, refuse_unknown_scenes, store_from_args)
 from tactcad.export.kinds import EXPORT_KINDS, kinds_help, parse_only
 
 
@@ -64,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
                                           with_progress)
 
     project = project_from_args(args)  # validation next: a bad design writes nothing
+    refuse_unknown_scenes(project, args.scene)  # before --out is looked at or a job planned
     plan = project.plan
     report = progress_from_args(args)
     store = store_from_args(args)
