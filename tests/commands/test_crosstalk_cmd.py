@@ -44,9 +44,11 @@ def test_a_comb_answers_at_its_own_cheapest_level():
 
 
 def test_a_comb_of_its_own_at_the_plane_fe():
-    """Not the shipped comb: a wider pitch, longer posts and other webs, at the FE level."""
+    """Not the shipped comb: a wider pitch, longer posts and other webs, at the FE level (in
+    a jaw long enough for the longer comb)."""
     webs = [0.15] * 6 + [0.1] * 6
     r = run_cli("crosstalk", "--design", COMB, "--set", "array.pitch_mm=5.0",
+                "--set", "grasper_jaw.length_mm=36",
                 "--set", "comb.post_length_mm=1.0", "--set", f"comb.web_thicknesses_mm={webs}",
                 "--model", "comb-fem2d", "--json")
     assert r.returncode == 0, r.stdout + r.stderr

@@ -201,8 +201,14 @@ def test_the_fe_couples_less_through_a_stiffer_or_taller_spine(comb, fem):
 
     stiff = estimate_comb_fem2d(comb_inputs(comb, spine_modulus_factor=1e3))
     assert stiff.crosstalk_rel < 1e-2 * fem.crosstalk_rel
-    # an M1.6 screw's head and nut ask a taller spine (4.1 mm against 3.9)
-    taller = tactcad.load(COMB, {"comb.screw_size": "M1.6"}).plan
+    from tactcad.design.array_plan import plan_from_dict
+
+    # an M1.6 screw's head and nut ask a taller spine (4.1 mm against 3.9); the comb alone,
+    # without the 10 mm jaw it no longer fits (refused when the design file is read)
+    raw = {key: table for key, table in comb.raw.items() if key != "grasper_jaw"}
+    taller = plan_from_dict({**raw, "comb": {**raw["comb"], "screw_size": "M1.6"}})
+    with pytest.raises(DesignError, match="grasper_jaw"):
+        tactcad.load(COMB, {"comb.screw_size": "M1.6"})
     assert taller.comb.sheets[0].spine_height_mm > comb.comb.sheets[0].spine_height_mm
     tall = estimate_comb_fem2d(comb_inputs(taller))
     assert tall.crosstalk_rel < fem.crosstalk_rel
