@@ -313,9 +313,9 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     (:class:`DieProject`), through its registry entry (:mod:`tactcad.products`).
 
     Args:
-        path: TOML design file; ``None`` means the one design file of the
-            working folder (a project folder), else the shipped example
-            ``macro_array`` (the paper's 2 x 5 array).
+        path: TOML design file, or a project folder holding one design file;
+            ``None`` means the one design file of the working folder (a project
+            folder), else the shipped example ``macro_array`` (the paper's 2 x 5 array).
         set: design values to override, by dotted key of the design file,
             e.g. ``{"element.web_thickness_mm": 0.3}`` (mm) or
             ``{"arms.lengths_mm": [4, 5, 6, 7, 8, 4, 5, 6, 7, 8]}``; checked
@@ -329,8 +329,8 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     Raises:
         DesignErrors: every refusal of the three files at once (``.errors``),
             an unknown ``set`` key included; nothing is built.
-        DesignError: an unreadable file, a ``path`` that is no path, or a
-            ``set`` key that is not ``section.key``.
+        DesignError: an unreadable file, a ``path`` that is no path, a folder with no
+            design file or several, or a ``set`` key that is not ``section.key``.
     """
     from tactcad.design.array_plan import with_overrides
     from tactcad.design.file_kind import read_array_tables
@@ -341,6 +341,10 @@ def load(path: str | Path | None = None, set: Mapping[str, Any] | None = None) -
     if path is not None and not isinstance(path, (str, PathLike)):
         raise DesignError("path", path, "a design file's path (str or pathlib.Path) or None")
     design = Path(path) if path is not None else default_design()
+    if design.is_dir():  # a project folder: its one design file
+        from tactcad.project_folder import design_in_folder
+
+        design = design_in_folder(design, "path")
     overrides = _checked_overrides(set)
     product = product_of(design)
     if not product.is_default:  # another product's object (a die's DieProject)

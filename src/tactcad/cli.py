@@ -323,6 +323,9 @@ def parse_checked(argv: list[str]) -> argparse.Namespace:
         raise UsageError(command, f"{exc}; {_LISTS[1][0]}{' '.join(unknown)}") from None
     warn_repeated(parser, args, argv)
     validate_options(parser, args)
+    from tactcad.commands import settle_design
+
+    settle_design(args)
     return args
 
 

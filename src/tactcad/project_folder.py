@@ -814,6 +814,37 @@ def _tomls_where(folder: str | Path, holds) -> list[Path]:
     return found
 
 
+def design_in_folder(folder: str | Path, field: str = "--design") -> Path:
+    """The design file a project folder names by holding it: its one design file (an
+    array's, a comb's or a silicon die's), so that ``--design FOLDER``, a command's
+    ``DESIGN`` word and ``tactcad.load(FOLDER)`` read the project as its file would.
+
+    Args:
+        folder: a project folder (as ``tactcad new`` or ``design --out`` writes one).
+        field: the option or keyword the folder was given as, for the refusal.
+
+    Returns:
+        The path of the folder's design file.
+
+    Raises:
+        DesignError: the folder holds no design file (a ``*.toml`` that cannot be read is
+            named with its fault) or several (each named: the file must be chosen).
+    """
+    folder = Path(folder)
+    found = designs_in(folder) + other_product_designs_in(folder)
+    if len(found) == 1:
+        return found[0]
+    if found:
+        raise DesignError(field, str(folder), "one of its design files: "
+                          + ", ".join(str(folder / p.name) for p in found),
+                          f"the folder holds {len(found)} design files")
+    unreadable = unreadable_tomls(folder)
+    why = (f"{unreadable[0].value}: {unreadable[0].why or unreadable[0].allowed}"
+           if unreadable else "it holds no *.toml with a [design] or [die] table")
+    raise DesignError(field, str(folder),
+                      "a design file (TOML) or a project folder holding one", why)
+
+
 def default_design(folder: str | Path = ".", refuse_unreadable: bool = True) -> Path:
     """The design a command works on when none is named: the one design file
     of the project folder ``folder`` (the working folder; an array's or a silicon

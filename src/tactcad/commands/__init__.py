@@ -35,13 +35,48 @@ SET_HELP = ("override one value of the design file (repeatable): a dotted key an
             "checked like the file")
 
 
+DESIGN_WORD_HELP = ("the design, as --design gives it: a design file (TOML) or a project "
+                    "folder holding one")
+
+
 def add_design_arg(p: argparse.ArgumentParser, design_help: str = DESIGN_HELP,
-                   set_help: str = SET_HELP) -> None:
+                   set_help: str = SET_HELP, design_word: bool = True) -> None:
     """The ``--design FILE`` and ``--set KEY=VALUE`` options every command that reads a
-    design shares (a command whose file is another kind says so in its own help texts)."""
+    design shares (a command whose file is another kind says so in its own help texts),
+    and with ``design_word`` the design as the command's one word (``tactcad strength
+    d/d.toml``; :func:`settle_design` reads it); a command with a word of its own
+    (``scenes NAME``) takes ``--design`` only."""
     p.add_argument("--design", metavar="FILE", default=None, help=design_help)
+    if design_word:
+        p.add_argument("design_word", metavar="DESIGN", nargs="?", default=None,
+                       help=DESIGN_WORD_HELP)
     p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                    help=set_help)
+
+
+def settle_design(args: argparse.Namespace) -> None:
+    """The design a parsed command line names, in ``args.design``, in place: the command's
+    ``DESIGN`` word is ``--design``'s value, and a project folder given either way is its
+    one design file (:func:`tactcad.project_folder.design_in_folder`).
+
+    Raises:
+        DesignError: the word and ``--design`` name two designs, or a folder that holds
+            no design file or several.
+    """
+    from tactcad.errors import DesignError
+
+    word = getattr(args, "design_word", None)
+    if word is not None:
+        given = getattr(args, "design", None)
+        if given is not None and Path(given) != Path(word):
+            raise DesignError("--design", given, f"one design: the command's word names {word}",
+                              "a command works on one design; give it once")
+        args.design = word
+    design = getattr(args, "design", None)
+    if design is not None and Path(design).is_dir():
+        from tactcad.project_folder import design_in_folder
+
+        args.design = str(design_in_folder(design))
 
 
 def add_output_args(p: argparse.ArgumentParser, json_help: str = "print one JSON object") -> None:

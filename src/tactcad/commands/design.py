@@ -251,7 +251,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "top of the ladder, about 1.5 min an element on two cores; not with "
                         "--jaw, whose design the checks that need no CAD kernel check: run "
                         "tactcad verify on it)")
-    add_design_arg(p)
+    add_design_arg(p, design_word=False)
     add_cache_args(p, ".tactcad-cache in the folder the design is written to, where the "
                       "project's commands find it")
     add_output_args(p, "print JSON")

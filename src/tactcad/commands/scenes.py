@@ -13,7 +13,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="List every scene of hardware/scenes.toml (beside the design "
                                    "file): its rig, groups and parts with quantities and level of "
                                    "detail. Builds no geometry.")
-    add_design_arg(p)
+    add_design_arg(p, design_word=False)
     p.add_argument("name", nargs="?", default=None, help="show only this scene")
     add_output_args(p, "print a JSON list of the scenes: name, rig, description, parts placed, "
                        "groups with each part's quantity and level of detail")

@@ -1,0 +1,58 @@
+"""A command reads its design as ``--design`` gives it or as its one word, a file or a
+project folder (``tactcad strength d/d.toml``, ``tactcad strength d``,
+``tactcad.load("d")``): the same design, the same answer; a folder naming no design, or
+several, and two designs at once are refused by name."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+import tactcad
+from conftest import run_cli
+from tactcad.errors import DesignError
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "hardware" / "ti_array_2x3"
+
+
+@pytest.fixture
+def project(tmp_path) -> Path:
+    folder = tmp_path / "probe"
+    shutil.copytree(EXAMPLE, folder, ignore=shutil.ignore_patterns(".tactcad-cache"))
+    return folder
+
+
+def test_the_design_as_a_word_a_folder_or_an_option_is_one_answer(project):
+    design = project / "ti_array_2x3.toml"
+    answers = [run_cli("strength", *given, "--json")
+               for given in (["--design", design], [design], [project], ["--design", project])]
+    assert [a.returncode for a in answers] == [0, 0, 0, 0], [a.stdout[-300:] for a in answers]
+    figures = [json.loads(a.stdout)["elements"] for a in answers]
+    assert all(f == figures[0] for f in figures[1:])
+    assert tactcad.load(project).source == tactcad.load(design).source == design
+
+
+def test_a_folder_of_several_designs_or_none_is_refused_naming_them(project, tmp_path):
+    shutil.copy(project / "ti_array_2x3.toml", project / "variant.toml")
+    several = json.loads(run_cli("strength", project, "--json").stdout)["error"]
+    assert several["field"] == "--design" and "variant.toml" in several["allowed"]
+    assert "ti_array_2x3.toml" in several["allowed"]
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    (empty / "notes.toml").write_text("broken = [", encoding="utf-8")
+    none = run_cli("readout", "--design", empty)
+    assert none.returncode == 2 and "notes.toml" in none.stderr and "Traceback" not in none.stderr
+    with pytest.raises(DesignError) as refused:
+        tactcad.load(empty)
+    assert refused.value.field == "path"
+
+
+def test_two_designs_at_once_are_refused_not_one_chosen(project):
+    other = project / "other.toml"
+    refused = run_cli("strength", "--design", project / "ti_array_2x3.toml", other, "--json")
+    error = json.loads(refused.stdout)["error"]
+    assert refused.returncode == 2 and error["field"] == "--design" and "other.toml" in error["allowed"]
