@@ -101,7 +101,7 @@ EXAMPLES = Path(tactcad.__file__).parent / "examples"
 @pytest.mark.parametrize("project, why", [
     ("macro_array/macro_array.toml", "names no grasper jaw"),
     ("no_such_design.toml", "no such file"),
-    ("macro_array", "a folder, not a file"),
+    ("macro_array", "names no grasper jaw"),  # a project folder: its one design file
 ])
 def test_a_project_without_a_jaw_is_refused_naming_the_option(tmp_path, project, why):
     r = run_cli("atlas", "--project", EXAMPLES / project, "--json")

@@ -54,7 +54,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                             + ", ".join(jaw_classes()) + ") or a TOML file with a "
                             "[grasper_jaw] table, as `tactcad design --jaw` takes it")
     where.add_argument("--project", metavar="DESIGN.toml",
-                       help="a sensor project's design file: the atlas of its jaw (its "
+                       help="a sensor project's design file (or its folder): the atlas of its jaw (its "
                             "[grasper_jaw] table, or a die's jaw), written in the project's "
                             f"{PROJECT_ATLAS_FOLDER}/ folder, where `tactcad export` finds "
                             "it for the review page")
@@ -191,6 +191,10 @@ def run(args: argparse.Namespace) -> int:
     """``atlas``: the table (from the store when kept), the front, its figure and summary."""
     from tactcad.studies.design_atlas import atlas_targets, checked_ranges
 
+    if args.project is not None and Path(args.project).is_dir():  # a project folder
+        from tactcad.project_folder import design_in_folder
+
+        args.project = str(design_in_folder(args.project, "--project"))
     ranges = ranges_of(args)
     bounds = checked_ranges(ranges)
     points = atlas_targets(args.points, ranges, args.seed)
