@@ -56,3 +56,18 @@ def test_two_designs_at_once_are_refused_not_one_chosen(project):
     refused = run_cli("strength", "--design", project / "ti_array_2x3.toml", other, "--json")
     error = json.loads(refused.stdout)["error"]
     assert refused.returncode == 2 and error["field"] == "--design" and "other.toml" in error["allowed"]
+
+
+@pytest.mark.parametrize("command", ["strength", "stiffness"])
+def test_a_die_project_is_read_as_its_word_or_folder_like_an_array(tmp_path, command):
+    # the die's views refuse an array's options on a die; the design's word is no such option
+    folder = tmp_path / "die"
+    shutil.copytree(ROOT / "hardware" / "grasper_jaw_5mm_mems", folder,
+                    ignore=shutil.ignore_patterns(".tactcad-cache"))
+    design = folder / "grasper_jaw_5mm_mems.toml"
+    by_option = run_cli(command, "--design", design, "--json")
+    assert by_option.returncode == 0, by_option.stdout[-400:]
+    for given in (design, folder):
+        answer = run_cli(command, given, "--json")
+        assert answer.returncode == 0, answer.stdout[-400:]
+        assert json.loads(answer.stdout) == json.loads(by_option.stdout)

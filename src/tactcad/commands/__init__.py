@@ -72,6 +72,7 @@ def settle_design(args: argparse.Namespace) -> None:
             raise DesignError("--design", given, f"one design: the command's word names {word}",
                               "a command works on one design; give it once")
         args.design = word
+        args.design_word = None  # one design, read from --design by every command from here
     design = getattr(args, "design", None)
     if design is not None and Path(design).is_dir():
         from tactcad.project_folder import design_in_folder
