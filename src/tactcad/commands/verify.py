@@ -88,12 +88,39 @@ def run(args: argparse.Namespace) -> int:
             top = records[0].get("levels_tried", [args.model])[-1]
             print(f"undecided at {top} (margin inside its error estimate): {', '.join(by_margin)}"
                   + ("" if args.model == "auto" else "; --model auto climbs the ladder"))
+        for r in records:
+            if r["verdict"] == "undecided" and r.get("less_accurate_levels"):
+                print(less_accurate_text(r))
         from tactcad.commands.budget import render_array
 
         print(f"K_obj error budget not evaluated: {budget}" if isinstance(budget, str)
               else "\n".join(render_array(budget)))
         print("no requirement fails" if ok else "a requirement is not met")
     return 0 if ok else 1
+
+
+def less_accurate_text(record: dict) -> str:
+    """An undecided row's levels: the one shown (the most accurate, the smallest error
+    estimate) and each other level tried with its verdict, margin and error estimate.
+
+    Args:
+        record: a verification record of ``verify --model auto`` with
+            ``less_accurate_levels`` (margins and errors relative).
+
+    Returns:
+        One line, e.g. ``kobj_accuracy_rel: undecided; shown at closed-form, the most
+        accurate level (error 4.50 %); less accurate: fem2d FAIL (margin -100.0 %,
+        error 9.70 %)``.
+    """
+    from tactcad.studies.verification import percent_text
+
+    others = ", ".join(f"{b['model']} {b['verdict'].upper()} (margin "
+                       f"{percent_text(b['margin_rel'])}, error "
+                       f"{percent_text(b['error_estimate_rel'], sign=False)})"
+                       for b in record["less_accurate_levels"])
+    return (f"  {record['requirement']}: undecided; shown at {record['model']}, the most "
+            f"accurate level (error {percent_text(record['error_estimate_rel'], sign=False)})"
+            f"; less accurate: {others}")
 
 
 def kobj_budget_section(plan, req, model: str):

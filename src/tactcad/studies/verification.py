@@ -1257,8 +1257,10 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     ladder's middle levels can be less accurate than the fem3d-corrected closed form (fem2d's
     plane model), so a verdict inside the closed form's error is not settled by one outside
     a wider error. Such a verdict is kept beside the undecided record
-    (``less_accurate_levels``) and the ladder climbs on; at its top the requirement stays
-    undecided with the most accurate level's record.
+    (``less_accurate_levels``) and the ladder climbs on. A requirement no level decides
+    stays undecided with the most accurate level's record (the smallest error estimate,
+    :func:`ladder_undecided`: its figures and its ``model``), every other level tried
+    listed beside it (``less_accurate_levels``), whichever level the ladder stopped at.
 
     Args:
         stress: as :func:`verification_matrix` (needed once a FEM level runs).
@@ -1277,8 +1279,9 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     chosen: dict[str, dict] = {}
     order: list[str] = []
     spent: list[dict] = []
-    # per requirement left undecided, its most accurate undecided record so far: a level
-    # less accurate than it (a larger error estimate) does not decide it
+    # per requirement left undecided, its most accurate undecided record so far with every
+    # other level tried listed beside it: a level less accurate than it (a larger error
+    # estimate) does not decide it, and it is the row shown when no level decides it
     open_at: dict[str, dict] = {}
     for i, level in enumerate(ladder):
         open_before = [k for k in order if k not in chosen] if order else None
@@ -1299,20 +1302,17 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
         climbable = [r for r in records if r["requirement"] not in chosen
                      and (r["verdict"] == "undecided" or "less_accurate_than" in r)
                      and not r["level_fixed"]]
+        last = top or not climbable
         for r in records:
             key = r["requirement"]
             if key in chosen:
                 continue
-            if "less_accurate_than" in r:
-                # the most accurate level's undecided record, this level's verdict beside it
-                open_at[key] = ladder_undecided(open_at[key], r)
-                if not (top or not climbable):
+            if r["verdict"] == "undecided" or "less_accurate_than" in r:
+                # the same record at every level (level fixed) is not merged with itself
+                open_at[key] = r if r["level_fixed"] else ladder_undecided(open_at.get(key), r)
+                if not last:
                     continue
                 r = open_at[key]
-            elif r["verdict"] == "undecided" and not (top or not climbable):
-                if key not in open_at or not less_accurate(r, open_at[key]):
-                    open_at[key] = r
-                continue
             r["decided_by"] = None if r["verdict"] == "undecided" else level
             r["levels_tried"] = list(ladder[:i + 1])
             chosen[key] = r
@@ -1337,23 +1337,64 @@ def less_accurate(record: dict, than: dict) -> bool:
     return a is not None and b is not None and math.isfinite(a) and math.isfinite(b) and a > b
 
 
-def ladder_undecided(open_record: dict, later: dict) -> dict:
-    """The record :func:`verification_auto` keeps for a requirement a level left undecided
-    and only less accurate levels decided: the undecided one (its figures, its level),
-    with the less accurate level's verdict, margin and error said beside it
-    (``less_accurate_levels``).
+def accuracy_key(record: dict) -> float:
+    """How a record's level ranks on its requirement, the smaller the more accurate: its
+    error estimate (relative), or infinity when it has no finite one (none stated, or an
+    infinite one), so that any level with a finite estimate ranks above it.
 
     Args:
-        open_record: the most accurate undecided record. later: a less accurate level's.
+        record: a verification record (``error_estimate_rel``, relative or None).
 
     Returns:
-        A copy of ``open_record`` (verdict ``undecided``).
+        The error estimate (relative, >= 0) or ``math.inf``.
     """
-    out = dict(open_record)
-    out["less_accurate_levels"] = [*open_record.get("less_accurate_levels", []),
-                                   {"model": later["model"], "verdict": later["verdict"],
-                                    "margin_rel": later["margin_rel"],
-                                    "error_estimate_rel": later["error_estimate_rel"]}]
+    error = record.get("error_estimate_rel")
+    return float(error) if error is not None and math.isfinite(error) else math.inf
+
+
+def _level_position(model: str) -> int:
+    """``model``'s place on the ladder (:func:`tactcad.mechanics.ladder.models`), cheapest
+    first; a level not on it after every one that is."""
+    from tactcad.mechanics.ladder import models
+
+    ladder = tuple(models())
+    return ladder.index(model) if model in ladder else len(ladder)
+
+
+def _beside(record: dict) -> dict:
+    """A level's record as :func:`ladder_undecided` lists it beside the row shown."""
+    return {"model": record["model"], "verdict": record["verdict"],
+            "margin_rel": record.get("margin_rel"),
+            "error_estimate_rel": record.get("error_estimate_rel")}
+
+
+def ladder_undecided(open_record: dict | None, later: dict) -> dict:
+    """The record :func:`verification_auto` keeps for a requirement no level has decided
+    so far: the most accurate level's record (the smallest error estimate,
+    :func:`accuracy_key`; of equal ones the later level's), verdict ``undecided``, with
+    every other level tried on it said beside it, cheapest first (``less_accurate_levels``:
+    each one's ``model``, ``verdict``, ``margin_rel`` and ``error_estimate_rel``). A level
+    that decided the requirement with a larger error than an undecided one is listed
+    there, never shown.
+
+    Args:
+        open_record: the record kept so far (None: no level has left it undecided yet).
+        later: the next level's record: undecided, or decided by a level less accurate
+            than ``open_record``'s (:func:`less_accurate`).
+
+    Returns:
+        A new record (``open_record`` and ``later`` unchanged): a copy of the more
+        accurate undecided one, with ``less_accurate_levels``.
+    """
+    if open_record is None:
+        return dict(later)
+    if later["verdict"] != "undecided" or accuracy_key(later) > accuracy_key(open_record):
+        shown, other = open_record, later
+    else:
+        shown, other = later, open_record
+    listed = [*open_record.get("less_accurate_levels", []), _beside(other)]
+    out = dict(shown)
+    out["less_accurate_levels"] = sorted(listed, key=lambda b: _level_position(b["model"]))
     return out
 
 

@@ -239,12 +239,14 @@ class FeCheck:
     def as_json(self) -> dict:
         """The check as ``tactcad die --fe-check --json`` writes it: K (N/mm) and the first
         resonance (Hz) by CalculiX and by the closed form, and the closed form's error
-        against CalculiX of each (relative); the first resonance under ``modal --json``'s
-        name, ``first_Hz``, its closed form's error as the fem3d row names it (the old
-        names are the die command's to add, :data:`FE_CHECK_RENAMED`)."""
+        against CalculiX of each (relative, a measured difference, not an estimate of
+        CalculiX's own error): the first resonance under ``modal --json``'s name,
+        ``first_Hz``, each closed form's error as the fem3d row names it
+        (``K_closed_form_error_rel``, ``first_Hz_closed_form_error_rel``; the old names are
+        the die command's to add, :data:`FE_CHECK_RENAMED`)."""
         return {"role": self.role, "K_fe_N_per_mm": self.k_fe_N_per_mm,
                 "K_closed_form_N_per_mm": self.k_closed_N_per_mm,
-                "K_error_rel": self.k_error_rel, "fe_first_Hz": self.f1_fe_Hz,
+                "K_closed_form_error_rel": self.k_error_rel, "fe_first_Hz": self.f1_fe_Hz,
                 "closed_form_first_Hz": self.f1_closed_Hz,
                 "first_Hz_closed_form_error_rel": self.f1_error_rel}
 
@@ -252,8 +254,12 @@ class FeCheck:
 #: The keys of a die's CalculiX check (``tactcad die --fe-check --json``) renamed, old ->
 #: new, as :data:`tactcad.products.silicon_die.mechanics.die_fem3d.FEM3D_RENAMED`: the old
 #: keys are still written beside the new ones and listed in the row's ``deprecated_keys``.
+#: ``K_error_rel`` was the closed form's K against CalculiX's, where a fem3d row's
+#: ``K_error_rel`` is fem3d's own error estimate: it is ``K_closed_form_error_rel``, as the
+#: fem3d row names the closed form's.
 FE_CHECK_RENAMED = {"f1_fe_Hz": "fe_first_Hz", "f1_closed_form_Hz": "closed_form_first_Hz",
-                    "f1_error_rel": "first_Hz_closed_form_error_rel"}
+                    "f1_error_rel": "first_Hz_closed_form_error_rel",
+                    "K_error_rel": "K_closed_form_error_rel"}
 
 
 def _brick(length: float, width: float, thick: float, div: tuple[int, int, int],
