@@ -3,7 +3,8 @@
 Within :func:`WarningLines.capture` every warning a run issues (tactcad's,
 e.g. the closed form's ``CorrectionRangeWarning``, or a library's) becomes
 one line ``tactcad: warning: ...`` on stderr, once per distinct text per run,
-as it happens; ``--quiet`` silences the lines, but for a run that ends in a refusal,
+as it happens (but the closed form's range warnings: all of a run's are said as one line
+when it ends, naming the worst); ``--quiet`` silences the lines, but for a run that ends in a refusal,
 which prints the warnings issued before it first (:func:`print_unsaid`). With ``--json``
 they go into the output object as a ``warnings`` list (:func:`json_with_warnings`) instead.
 Deprecation, import and resource warnings are for developers and dropped.
@@ -55,6 +56,11 @@ class WarningLines:
     A warning whose object has a ``fold_as`` text (one of many alike, e.g. each element
     geometry outside a fit) is shown the first time; the others of that text are counted
     and told in one closing line, with the largest ``error_rel`` they carry.
+    A warning whose object has a ``merge_as`` text (the closed form's
+    :class:`~tactcad.mechanics.correction.CorrectionRangeWarning`: each element, and each
+    end of its web tolerance, outside the correction's fit) is held, and all of a run's
+    are said as one line when the run ends (or before its refusal), made by the warning
+    class's ``merged_text`` (each coordinate's values over all of them, the worst's error).
     ``categories`` keeps each line's warning category (a closing line: its first warning's).
     """
 
@@ -64,6 +70,7 @@ class WarningLines:
         self.categories: dict[str, type[Warning]] = {}
         self.folded: dict[str, dict[str, float]] = {}  # fold -> its other texts' errors
         self.fold_categories: dict[str, type[Warning]] = {}
+        self.merging: dict[str, dict[str, Warning]] = {}  # merge -> its warnings by text
         self.said = 0  # the lines echoed, the first ones
 
     def _add(self, text: str, category: type[Warning] = UserWarning) -> None:
@@ -85,6 +92,12 @@ class WarningLines:
         text = one_line(message)
         if text in self.lines:
             return
+        merge = getattr(message, "merge_as", "")
+        if merge and callable(getattr(type(message), "merged_text", None)):
+            held = self.merging.setdefault(merge, {})
+            held.setdefault(text, message)
+            self.fold_categories.setdefault(merge, category)
+            return
         fold = getattr(message, "fold_as", "")
         if fold and fold in self.folded:
             self.folded[fold][text] = float(getattr(message, "error_rel", 0.0) or 0.0)
@@ -94,8 +107,21 @@ class WarningLines:
             self.fold_categories[fold] = category
         self._add(text, category)
 
+    def close_merges(self) -> None:
+        """One line per merged kind held (:attr:`merging`), made by its class's
+        ``merged_text`` from the warnings in the order issued."""
+        merging, self.merging = self.merging, {}
+        for merge, held in merging.items():
+            if held:
+                said = list(held.values())
+                text = one_line(type(said[0]).merged_text(said))
+                if text not in self.lines:
+                    self._add(text, self.fold_categories[merge])
+
     def close_folds(self) -> None:
-        """One line per folded kind that had more than its first warning."""
+        """One line per folded kind that had more than its first warning, and one per
+        merged kind (:meth:`close_merges`)."""
+        self.close_merges()
         for fold, errors in self.folded.items():
             if errors:
                 self._add(f"{fold}: {len(errors)} more alike, estimated error up to "
@@ -122,7 +148,13 @@ def print_unsaid() -> None:
     (``--quiet``): a refusal prints them before itself, as what it followed from (the
     ``--set`` given twice whose last value is refused)."""
     if _CAPTURES:  # the refusal stays the run's last lines, without the heads
-        _CAPTURES[-1].say_unsaid(heads=False)
+        notes = _CAPTURES[-1]
+        echo, notes.echo = notes.echo, False  # the held range warnings, said below
+        try:
+            notes.close_merges()
+        finally:
+            notes.echo = echo
+        notes.say_unsaid(heads=False)
 
 
 def json_with_warnings(text: str, lines: list[str], notices: list[str] = ()) -> str | None:

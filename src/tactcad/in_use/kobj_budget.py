@@ -498,9 +498,13 @@ def _tolerance_end_k(geometry, material, web_mm: float) -> float:
                      material).stiffness_N_per_mm
     for w in said:
         if issubclass(w.category, CorrectionRangeWarning):
-            warnings.warn(f"an element at the end of its web tolerance (web "
-                          f"{web_mm:g} mm, drawn {geometry.web_thickness_mm:g} mm; the K band "
-                          f"`verify` reads): {w.message}", CorrectionRangeWarning, stacklevel=2)
+            # with its values and error: a run says it merged with the element as drawn's
+            where = (f"web {web_mm:g} mm, drawn {geometry.web_thickness_mm:g} mm")
+            warnings.warn(CorrectionRangeWarning(
+                f"an element at the end of its web tolerance ({where}; the K band `verify` "
+                f"reads): {w.message}", getattr(w.message, "error_rel", 0.0),
+                getattr(w.message, "left", None), f"at a web tolerance's end, {where}"),
+                stacklevel=2)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return k

@@ -295,11 +295,12 @@ def _corrected(parts: ComplianceParts, g: ElementGeometry, material: Material, w
     t, R, b = web_mm, g.notch_radius_mm, g.sheet_thickness_mm
     coords = {k: float(v) for k, v in correction_coordinates(
         parts, t, R, b, material.poisson_ratio).items()}
+    aspect = g.arm_length_mm / g.arm_height_mm
     k, _ = apply_correction(1.0 / float(parts.total), correction=corr, web_mm=t,
                             notch_radius_mm=R, arm_mm=g.arm_length_mm, sheet_mm=b,
-                            arm_over_arm_height=g.arm_length_mm / g.arm_height_mm, warn=warn,
-                            **coords)
-    return float(k), float(corr.error_estimate_rel(**coords))
+                            arm_over_arm_height=aspect, warn=warn, **coords)
+    # past the fitted arm / arm height the error grows (the file's measured slope)
+    return float(k), float(corr.error_estimate_rel(**coords, arm_over_arm_height=aspect))
 
 
 def _parts(g: ElementGeometry, material: Material, web_mm: float) -> ComplianceParts:
@@ -434,7 +435,8 @@ def estimate_closed_form(g: ElementGeometry, material: Material, *, element: int
         :func:`~tactcad.mechanics.gauge_strain.point_strain_factor`, left out when
         ``corrected=False``, and the layer's face factor). The error estimate is the stiffness
         correction's (fit residual, plus the extrapolation change outside the
-        fitted range), or 0.39 t/R when uncorrected.
+        fitted range and, past the fitted arm / arm height, its measured growth per
+        unit of a / h_a beyond it), or 0.39 t/R when uncorrected.
 
     Warns:
         CorrectionRangeWarning: the geometry lies outside the stiffness

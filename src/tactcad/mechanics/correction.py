@@ -37,7 +37,12 @@ fitted by :mod:`tactcad.studies.correction_fit`); the file ``src/tactcad/data/st
 of every fitted coordinate, the max / rms residual, the hold-out check and
 the points. Outside the range the closed form warns with an estimated error:
 the fit's largest residual plus the change of the correction factor between
-the point and its projection onto the fitted range.
+the point and its projection onto the fitted range, plus, for an arm longer
+than the fitted arm / arm height (a / h_a) allows, a measured growth
+k r (a / h_a - its fitted end): r the arm-bending share of the compliance (the
+arm term c7 r is what extrapolates), k the slope per unit of a / h_a and of r
+(``arm_aspect_extrapolation`` in the file: k and the fem3d points it bounds
+with a margin, with their source).
 
 Units: mm, N, MPa, N/mm (K), mm/N (compliance C).
 """
@@ -71,6 +76,9 @@ N_COEFFICIENTS = len(COEFFICIENT_NAMES)
 #: unit t/R (single-sided circular notch; the error estimate of the identity).
 UNCORRECTED_BIAS_PER_T_OVER_R = 0.39
 
+#: The fitted coordinate whose range end an arm's measured error growth is counted from.
+ARM_ASPECT_KEY = "arm_over_arm_height"
+
 #: Coordinates whose fitted range is stored and checked (dimensionless
 #: ratios and the physical sizes they come from).
 RANGE_KEYS = ("t_over_R", "width_ratio", "web_over_sheet", "poisson_ratio", "web_mm",
@@ -78,7 +86,68 @@ RANGE_KEYS = ("t_over_R", "width_ratio", "web_over_sheet", "poisson_ratio", "web
 
 
 class CorrectionRangeWarning(UserWarning):
-    """A correction is applied outside the range it was fitted over."""
+    """A correction is applied outside the range it was fitted over.
+
+    A command or an API call says all of its run's such warnings as one line
+    (:meth:`merged_text`, through :class:`tactcad.commands.notices.WarningLines`):
+    the nominal elements and the ends of their web tolerance would otherwise say the
+    same range three times.
+
+    Attributes:
+        error_rel: the estimated relative error there (dimensionless).
+        left: {coordinate: (least value, largest value, fitted low, fitted high)} of the
+            coordinates left (:data:`RANGE_KEYS`).
+        where: what the estimate was of, when not the element as drawn (e.g. an end of its
+            web tolerance); "" for the element as drawn.
+        merge_as: what a run's output merges such warnings under.
+    """
+
+    merge_as = "closed-form stiffness correction used outside its fitted range"
+
+    def __init__(self, message: str, error_rel: float = 0.0,
+                 left: Mapping[str, tuple[float, float, float, float]] | None = None,
+                 where: str = ""):
+        super().__init__(message)
+        self.error_rel = float(error_rel)
+        self.left = dict(left or {})
+        self.where = where
+
+    @staticmethod
+    def merged_text(said: "list[CorrectionRangeWarning]") -> str:
+        """One line for every range warning of a run: each coordinate left with the values
+        it took over all of them and its fitted range, and the largest estimated error with
+        the values of the estimate it belongs to (the worst). One warning keeps its own
+        text; one without its values (a bare text) is named by its text alone.
+
+        Args:
+            said: the warnings, in the order issued (at least one).
+
+        Returns:
+            The line (no trailing newline).
+        """
+        if len(said) == 1 or not all(w.left for w in said):
+            return "; ".join(dict.fromkeys(str(w) for w in said))
+        names = list(dict.fromkeys(k for w in said for k in w.left))
+        parts = []
+        for k in names:
+            drawn = [w.left[k] for w in said if k in w.left and not w.where]
+            spans = drawn or [w.left[k] for w in said if k in w.left]
+            lo, hi = min(v[0] for v in spans), max(v[1] for v in spans)
+            fit_lo, fit_hi = spans[0][2], spans[0][3]
+            vals = f"{lo:.4g}" if f"{lo:.4g}" == f"{hi:.4g}" else f"{lo:.4g} ... {hi:.4g}"
+            parts.append(f"{k} ({RANGE_WORDS.get(k, k)}) {vals}, fitted {fit_lo:.4g} ... "
+                         f"{fit_hi:.4g}" + ("" if drawn else " (only at a web tolerance's end)"))
+        worst = max(said, key=lambda w: w.error_rel)
+        at = ", ".join(f"{RANGE_WORDS.get(k, k)} {v[1] if v[1] > v[3] else v[0]:.4g}"
+                       for k, v in worst.left.items())
+        what = ("elements as drawn and at the ends of their web tolerance, the K band "
+                "`verify` reads" if any(w.where for w in said) else "elements")
+        return (f"closed-form stiffness correction used outside its fitted range "
+                f"({'; '.join(parts)}) by {len(said)} estimates ({what}); estimated error up "
+                f"to {100 * worst.error_rel:.2g} % at the worst, {at}"
+                f"{' ' + worst.where if worst.where else ''} (the correction is fitted to "
+                "fem3d solves of elements inside that range; `tactcad stiffness --model fem3d` "
+                "solves an element without it)")
 
 
 @contextmanager
@@ -180,9 +249,14 @@ class Correction:
         residual_rel: largest relative residual |K_fit / K_fem3d - 1| of the
             fit (``None`` for the identity).
         source: what the reference was (model, meshes, grid).
+        arm_aspect_slope_rel: k of the error estimate's growth k r (a / h_a - end) past
+            the fitted arm / arm height's upper end (relative error per unit of a / h_a
+            and of the arm-bending share r, >= 0; the JSON's
+            ``arm_aspect_extrapolation.slope_rel_per_unit``, measured against fem3d past
+            the range; 0: no growth counted).
 
     Raises:
-        DesignError: non-finite coefficients, a negative residual, or a
+        DesignError: non-finite coefficients, a negative residual or slope, or a
             denominator 1 + c1 s + c2 s^2 <= 0 over a finite t/R range.
     """
 
@@ -190,6 +264,7 @@ class Correction:
     fit_range: FitRange = field(default_factory=FitRange)
     residual_rel: float | None = None
     source: str = "none: uncorrected Euler-Bernoulli"
+    arm_aspect_slope_rel: float = 0.0
 
     def __post_init__(self):
         try:
@@ -207,6 +282,14 @@ class Correction:
             if not math.isfinite(r) or r < 0:
                 raise DesignError("residual_rel", self.residual_rel, "a finite number >= 0")
             object.__setattr__(self, "residual_rel", r)
+        try:
+            slope = float(self.arm_aspect_slope_rel)
+        except (TypeError, ValueError):
+            slope = math.nan
+        if not math.isfinite(slope) or slope < 0:
+            raise DesignError("arm_aspect_extrapolation.slope_rel_per_unit",
+                              self.arm_aspect_slope_rel, "a finite number >= 0")
+        object.__setattr__(self, "arm_aspect_slope_rel", slope)
         lo, hi = self.fit_range.t_over_R
         if math.isfinite(hi) and np.any(self._notch_term(np.linspace(lo, hi, 65)) <= -1):
             raise DesignError("coefficients", coeffs,
@@ -237,12 +320,23 @@ class Correction:
 
     def error_estimate_rel(self, t_over_R, width_ratio=0.0, poisson_ratio=0.33,
                            notch_share=1.0, shear_share=0.0, arm_share=0.0,
-                           web_over_sheet=0.0) -> np.ndarray:
+                           web_over_sheet=0.0, arm_over_arm_height=None) -> np.ndarray:
         """Estimated relative error of the corrected closed form.
 
         Identity: 0.39 t/R (the uncorrected bias). Fitted: the largest fit
         residual, plus, outside the fitted t/R, w or nu range, the change of
-        the factor between the point and its projection onto the range.
+        the factor between the point and its projection onto the range, plus,
+        past the fitted arm / arm height's upper end, k r (a / h_a - end) with k
+        :attr:`arm_aspect_slope_rel` and r the arm-bending share (the growth
+        measured against fem3d there: it grows with the distance from the range).
+
+        Args:
+            t_over_R, width_ratio, poisson_ratio, notch_share, shear_share, arm_share,
+                web_over_sheet: the model's coordinates (module doc; dimensionless).
+            arm_over_arm_height: a / h_a (dimensionless), or None: not counted.
+
+        Returns:
+            The relative error (dimensionless), broadcast over the arguments.
         """
         s = np.asarray(t_over_R, dtype=float)
         if self.is_identity or self.residual_rel is None:
@@ -253,14 +347,22 @@ class Correction:
         f_in = self.factor(fr.clip("t_over_R", s), fr.clip("width_ratio", width_ratio),
                            fr.clip("poisson_ratio", poisson_ratio), notch_share, shear_share,
                            arm_share, fr.clip("web_over_sheet", web_over_sheet))
-        return self.residual_rel + np.abs(f / f_in - 1.0)
+        err = self.residual_rel + np.abs(f / f_in - 1.0)
+        hi = fr.arm_over_arm_height[1]
+        if arm_over_arm_height is not None and self.arm_aspect_slope_rel and math.isfinite(hi):
+            beyond = np.maximum(np.asarray(arm_over_arm_height, dtype=float) - hi, 0.0)
+            err = err + self.arm_aspect_slope_rel * np.asarray(arm_share, dtype=float) * beyond
+        return err
 
     def as_json(self) -> dict:
         """The part of the JSON document :func:`load_correction` reads."""
-        return {"model": MODEL,
-                "coefficients": dict(zip(COEFFICIENT_NAMES, self.coefficients)),
-                "fit_range": self.fit_range.as_json(),
-                "residual_rel_max": self.residual_rel, "source": self.source}
+        doc = {"model": MODEL,
+               "coefficients": dict(zip(COEFFICIENT_NAMES, self.coefficients)),
+               "fit_range": self.fit_range.as_json(),
+               "residual_rel_max": self.residual_rel, "source": self.source}
+        if self.arm_aspect_slope_rel:
+            doc["arm_aspect_extrapolation"] = {"slope_rel_per_unit": self.arm_aspect_slope_rel}
+        return doc
 
     @classmethod
     def from_json(cls, data: Mapping[str, Any]) -> "Correction":
@@ -282,6 +384,7 @@ class Correction:
             rng = FitRange(**{k: fr[k] for k in RANGE_KEYS if k in fr})
             residual = data["residual_rel_max"]
             source = data["source"]
+            slope = (data.get("arm_aspect_extrapolation") or {}).get("slope_rel_per_unit", 0.0)
         except (KeyError, TypeError, AttributeError) as exc:
             raise DesignError(f"stiffness_correction.{exc.args[0] if exc.args else '?'}", None,
                               "keys model, coefficients{c1..c8}, fit_range, residual_rel_max, "
@@ -290,7 +393,8 @@ class Correction:
             raise DesignError("stiffness_correction.model", data.get("model"), MODEL)
         if not isinstance(source, str) or not source.strip():
             raise DesignError("stiffness_correction.source", source, "a non-empty string")
-        return cls(coefficients=coeffs, fit_range=rng, residual_rel=residual, source=source)
+        return cls(coefficients=coeffs, fit_range=rng, residual_rel=residual, source=source,
+                   arm_aspect_slope_rel=slope)
 
 
 #: The identity correction (uncorrected closed form).
@@ -369,7 +473,8 @@ def apply_correction(K_eb, t_over_R, correction: Correction = IDENTITY, *, width
     for mask in out.values():
         outside |= np.broadcast_to(mask, K.shape)
     if warn and out:
-        err = correction.error_estimate_rel(t_over_R, width_ratio, poisson_ratio, *shares)
+        err = correction.error_estimate_rel(t_over_R, width_ratio, poisson_ratio, *shares,
+                                            arm_over_arm_height=arm_over_arm_height)
         warn_outside(correction, out, int(np.count_nonzero(outside)), int(K.size),
                      float(np.max(np.broadcast_to(err, K.shape)[outside])),
                      values={k: np.asarray(coords[k], float)[mask] for k, mask in out.items()})
@@ -405,8 +510,11 @@ def warn_outside(correction: Correction, out: Mapping[str, np.ndarray], n_out: i
     which = ", ".join(f"{k} ({RANGE_WORDS.get(k, k)}) "
                       + (f"{_values_said(values[k])}, fitted " if np.size(values.get(k)) else "")
                       + f"{getattr(fr, k)[0]:.4g} ... {getattr(fr, k)[1]:.4g}" for k in out)
-    warnings.warn(
+    left = {k: (float(np.min(values[k])), float(np.max(values[k])), *getattr(fr, k))
+            for k in out if np.size(values.get(k))}
+    warnings.warn(CorrectionRangeWarning(
         f"closed-form stiffness correction used outside its fitted range at {n_out} of {n} "
         f"points ({which}); estimated error up to {100 * error_rel:.2g} % (the correction is "
         "fitted to fem3d solves of elements inside that range; `tactcad stiffness --model "
-        "fem3d` solves an element without it)", CorrectionRangeWarning, stacklevel=3)
+        "fem3d` solves an element without it)", error_rel,
+        left if len(left) == len(out) else None), stacklevel=3)

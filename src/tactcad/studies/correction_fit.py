@@ -206,6 +206,8 @@ def refit(path: str | Path = CORRECTION_FILE) -> dict:
     doc = json.loads(Path(path).read_text(encoding="utf-8"))
     new = build_document([{k: v for k, v in p.items() if k != "residual_rel"}
                           for p in doc["points"]], source=doc.get("source"))
+    if "arm_aspect_extrapolation" in doc:  # measured past the fit, not refitted: kept as is
+        new["arm_aspect_extrapolation"] = doc["arm_aspect_extrapolation"]
     Path(path).write_text(json.dumps(new, indent=2) + "\n", encoding="utf-8")
     return new
 
