@@ -141,3 +141,16 @@ def test_a_stacked_array_is_not_held_to_a_jaw_it_does_not_seat_in():
     project = tactcad.load(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml",
                            set={"grasper_jaw.width_mm": 7.5})
     assert project.plan.construction == "stacked"
+
+
+def test_of_two_keys_set_the_one_some_value_of_which_passes_is_named():
+    """Both jaws together (5.6 + 9 mm) thicker than the 10 mm shaft: no width of the jaw
+    passes, so the refusal names the other key set, the opposing jaw, with its range."""
+    set_ = {"grasper_jaw.width_mm": 7.0, "grasper_jaw.opposing_jaw_mm": 9.0}
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(COMB, set=set_)
+    e = next(e for e in err.value.errors if e.field.startswith("grasper_jaw."))
+    assert e.field == "grasper_jaw.opposing_jaw_mm" and e.value == 9.0 and e.file == "set"
+    bound = _bound(e.allowed)
+    assert 0.5 <= bound < 9.0
+    assert tactcad.load(COMB, set={**set_, "grasper_jaw.opposing_jaw_mm": bound}).plan.slots

@@ -287,16 +287,18 @@ def _closed_refusal(j: GrasperJawSection, key: str) -> tuple[float, str] | None:
     both_jaws = t + o
     beside = closed_thickness_limit_mm(bore, width)  # both jaws' thickness the width leaves
     across = closed_thickness_limit_mm(bore, both_jaws)  # the width both jaws leave
-    if key == "thickness_mm" and beside - o > 1e-9:
+    # each bound within the key's own range (GrasperJawSection), else no value of it passes
+    if key == "thickness_mm" and beside - o >= 1.0:
         return t, (f"<= {fmt(math.floor((beside - o) * 1e4) / 1e4)} mm with the {fmt(o)} mm "
                    "opposing jaw (opposing_jaw_mm)")
-    if key == "opposing_jaw_mm" and beside - t > 1e-9:
+    if key == "opposing_jaw_mm" and beside - t >= 0.5:
         return o, (f"<= {fmt(math.floor((beside - t) * 1e4) / 1e4)} mm with this jaw's "
                    f"{fmt(t)} mm (thickness_mm)")
-    if key == "width_mm" and j.width_mm is not None and both_jaws < bore - 1e-9:
+    if key == "width_mm" and j.width_mm is not None and across >= 1.0:
         return width, (f"<= {fmt(math.floor(across * 1e4) / 1e4)} mm with the jaws' "
                        f"{fmt(t)} + {fmt(o)} mm (thickness_mm, opposing_jaw_mm)")
-    if key == "width_clearance_mm" and j.width_mm is None and both_jaws < bore - 1e-9:
+    if key == "width_clearance_mm" and j.width_mm is None and both_jaws < bore - 1e-9 \
+            and bore - across <= 6.0:
         return j.width_clearance_mm, (f">= {fmt(math.ceil((bore - across) * 1e4) / 1e4)} mm "
                                       f"with the jaws' {fmt(t)} + {fmt(o)} mm (thickness_mm, "
                                       "opposing_jaw_mm)")
@@ -306,6 +308,8 @@ def _closed_refusal(j: GrasperJawSection, key: str) -> tuple[float, str] | None:
         elif j.width_clearance_mm > 1e-9:  # (D - c)^2 + T^2 <= D^2
             least = (j.width_clearance_mm ** 2 + both_jaws ** 2) / (2 * j.width_clearance_mm)
         else:
+            return None
+        if least > 20.0:
             return None
         return j.shaft_diameter_mm, (f">= {fmt(math.ceil(least * 1e4) / 1e4)} mm for the "
                                      f"{fmt(width)} mm wide jaws, {fmt(t)} + {fmt(o)} mm "
