@@ -364,7 +364,8 @@ def _validated(data: Mapping[str, Any], design: Path,
     from tactcad.project_folder import companion_tables
 
     try:
-        validated = project_with_design_data(data, design, companions=companion_tables)
+        validated = project_with_design_data(data, design, companions=companion_tables,
+                                             set_keys=tuple(overrides))
         check_references_stiffer(validated.plan)
         return validated
     except DesignErrors as exc:

@@ -22,8 +22,9 @@ COMB = EXAMPLES / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
 @pytest.mark.parametrize("override, field, words", [
     # the insert's pocket, the pin's steel and the distal wall need a longer jaw
     ({"grasper_jaw.length_mm": 20.0}, "grasper_jaw.length_mm", "value >= "),
-    # 7.5 mm wide, the 10 mm class's jaws closed (5.6 + 1.5 mm) pass no 10 mm trocar
-    ({"grasper_jaw.width_mm": 7.5}, "grasper_jaw.thickness_mm", "<= "),
+    # 7.5 mm wide, the 10 mm class's jaws closed (5.6 + 1.5 mm) pass no 10 mm trocar: the
+    # width set is named, not the class's thickness the design never states
+    ({"grasper_jaw.width_mm": 7.5}, "grasper_jaw.width_mm", "<= "),
 ])
 def test_load_refuses_a_stated_jaw_the_insert_cannot_fit(override, field, words):
     with pytest.raises(DesignErrors) as err:
@@ -57,3 +58,99 @@ def test_load_design_refuses_a_stated_jaw_the_insert_cannot_fit(tmp_path):
 def test_designs_whose_jaw_fits_or_that_state_none_still_load(design):
     project = tactcad.load(design)
     assert project.plan.slots
+
+
+def _refusal(argv, capsys):
+    """The exit code and the JSON error of ``tactcad`` run with ``argv``."""
+    code = cli.main(argv)
+    return code, json.loads(capsys.readouterr().out)["error"]
+
+
+def _bound(allowed: str) -> float:
+    """The number of an ``allowed`` text's ``<= X mm`` or ``>= X mm``."""
+    return float(allowed.split(" ")[1])
+
+
+@pytest.mark.parametrize("key, value", [
+    ("width_mm", 9.5),            # narrower than the shaft, too wide beside 5.6 + 1.5 mm
+    ("width_mm", 7.5),
+    ("width_clearance_mm", 2.0),  # the shaft less 2 mm: 8 mm wide
+    ("thickness_mm", 8.0),        # 6.5 mm wide: the two jaws 9.5 mm thick
+    ("opposing_jaw_mm", 4.0),
+])
+def test_verify_names_the_jaw_key_set_that_breaks_the_closed_jaws_rule(key, value, capsys):
+    """The closed jaws (width x both thicknesses) pass the shaft: a refusal of a value set
+    on the command line names that key, its value and the range that passes, and the
+    range's bound is a value the design loads with."""
+    code, error = _refusal(["verify", "--design", str(COMB), "--set",
+                            f"grasper_jaw.{key}={value}", "--no-cache", "--json"], capsys)
+    assert code == 2 and error["field"] == f"grasper_jaw.{key}" and error["value"] == value
+    assert error["message"].startswith(f"--set grasper_jaw.{key}={value}: ")
+    bound = _bound(error["allowed"])
+    assert (bound > value) if key == "width_clearance_mm" else (bound < value)
+    assert tactcad.load(COMB, set={f"grasper_jaw.{key}": bound}).plan.slots
+
+
+def test_a_jaw_wider_than_its_shaft_is_refused_naming_its_width(capsys):
+    code, error = _refusal(["verify", "--design", str(COMB), "--set",
+                            "grasper_jaw.width_mm=12.5", "--no-cache", "--json"], capsys)
+    assert code == 2 and error["field"] == "grasper_jaw.width_mm" and error["value"] == 12.5
+    assert _bound(error["allowed"]) == 10.0  # the 10 mm class's shaft
+
+
+def _jaw_width_mm() -> float:
+    from tactcad.partlib.grasper_jaw import jaw_part
+
+    return jaw_part(tactcad.load(COMB).plan).geometry.width_mm
+
+
+@pytest.mark.parametrize("scale", [1.5, 0.2])
+def test_a_tissue_slab_off_the_jaws_face_is_refused_at_load(scale, tmp_path, capsys):
+    """A slab wider than the jaw's face (it lies on the opposing jaw) or too narrow to lie
+    under the window over the tips is refused when the design is read, naming the key,
+    its value and the range, before anything is judged or written."""
+    width = round(_jaw_width_mm() * scale, 3)
+    code, error = _refusal(["check", "--design", str(COMB), "--set",
+                            f"tissue_slab.width_mm={width}", "--out", str(tmp_path / "chk"),
+                            "--json"], capsys)
+    assert code == 2 and error["field"] == "tissue_slab.width_mm" and error["value"] == width
+    assert error["allowed"].endswith(f"<= {_jaw_width_mm():g} mm")
+    assert not (tmp_path / "chk").exists()
+
+
+def test_a_tissue_slab_as_wide_as_the_jaws_face_loads():
+    project = tactcad.load(COMB, set={"tissue_slab.width_mm": _jaw_width_mm()})
+    assert project.plan.raw["tissue_slab"]["width_mm"] == _jaw_width_mm()
+
+
+@pytest.mark.parametrize("thickness", [0, -1.0])
+def test_a_tissue_slab_without_thickness_is_refused_at_load(thickness, capsys):
+    code, error = _refusal(["verify", "--design", str(COMB), "--set",
+                            f"tissue_slab.thickness_mm={thickness}", "--no-cache", "--json"],
+                           capsys)
+    assert code == 2 and error["field"] == "tissue_slab.thickness_mm"
+    assert "0 < value" in error["allowed"]
+
+
+def test_a_stacked_array_is_not_held_to_a_jaw_it_does_not_seat_in():
+    """The stacked array's construction seats in no jaw (no jaw search in its registry
+    entry): a [grasper_jaw] it states is not judged against it."""
+    from tactcad.design.construction_registry import construction
+
+    assert not construction("stacked").jaw_design
+    project = tactcad.load(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml",
+                           set={"grasper_jaw.width_mm": 7.5})
+    assert project.plan.construction == "stacked"
+
+
+def test_of_two_keys_set_the_one_some_value_of_which_passes_is_named():
+    """Both jaws together (5.6 + 9 mm) thicker than the 10 mm shaft: no width of the jaw
+    passes, so the refusal names the other key set, the opposing jaw, with its range."""
+    set_ = {"grasper_jaw.width_mm": 7.0, "grasper_jaw.opposing_jaw_mm": 9.0}
+    with pytest.raises(DesignErrors) as err:
+        tactcad.load(COMB, set=set_)
+    e = next(e for e in err.value.errors if e.field.startswith("grasper_jaw."))
+    assert e.field == "grasper_jaw.opposing_jaw_mm" and e.value == 9.0 and e.file == "set"
+    bound = _bound(e.allowed)
+    assert 0.5 <= bound < 9.0
+    assert tactcad.load(COMB, set={**set_, "grasper_jaw.opposing_jaw_mm": bound}).plan.slots

@@ -51,8 +51,9 @@ def test_the_default_closed_jaws_pass_the_trocar(comb_plan):
 @pytest.mark.parametrize("table, words", [
     # the 5 mm class's 3.3 mm jaw cannot hold the pocket: its width is the key named
     ({"shaft_class_mm": "5"}, ["grasper_jaw.width_mm", "3.3", ">= 6.4 mm"]),
+    # sqrt(10^2 - 9^2) - 1.5 = 2.858899 mm, floored so that the bound itself passes
     ({"width_clearance_mm": 1.0, "thickness_mm": 6.0},
-     ["grasper_jaw.thickness_mm", "6", "<= 2.8589 mm", "1.5 mm opposing jaw", "10 mm shaft"]),
+     ["grasper_jaw.thickness_mm", "6", "<= 2.8588 mm", "1.5 mm opposing jaw", "10 mm shaft"]),
     ({"shaft_class_mm": "7"}, ["grasper_jaw.shaft_class_mm", "5, 10"]),
     # a class written as a number is named, with how to write it
     ({"shaft_class_mm": 10}, ["grasper_jaw.shaft_class_mm = 10", "5, 10 as text",

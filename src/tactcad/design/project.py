@@ -23,7 +23,7 @@ import errno
 from dataclasses import dataclass, replace
 from pathlib import Path
 from string import Template
-from typing import Any, Callable, Iterator, Mapping
+from typing import Any, Callable, Iterable, Iterator, Mapping
 
 from tactcad.design.array_plan import (DEFAULT_DESIGN, Plan, plan_from_model,
                                        stacked_columns_error, validate_design)
@@ -207,7 +207,8 @@ def _check_scenes_without_rigs(scenes: Mapping[str, SceneSpec], plan: Plan, prob
                 file=scenes_file)
 
 
-def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems) -> Plan | None:
+def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems,
+             set_keys: Iterable[str] = ()) -> Plan | None:
     if design is None:
         return None
     from tactcad.partlib.grasper_jaw import stated_jaw_errors
@@ -220,7 +221,7 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems) 
     plan = plan_from_model(model, design, source)
     # the jaw the design states takes its insert (the rules its part applies), refused here
     # rather than first by the command that builds it
-    problems.extend(stated_jaw_errors(plan, Path(source).name))
+    problems.extend(stated_jaw_errors(plan, Path(source).name, tuple(set_keys)))
     return plan
 
 
@@ -371,7 +372,8 @@ def load_project(design: str | Path | None = None) -> Project:
 
 def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
                              problems: Problems | None = None,
-                             companions: CompanionMaker | None = None) -> Project:
+                             companions: CompanionMaker | None = None,
+                             set_keys: Iterable[str] = ()) -> Project:
     """:func:`load_project` for design tables already read (and perhaps
     changed, e.g. by ``--set``) from the design file at ``path``: its rigs and
     scenes files (:func:`companion_files`) are read and every file is
@@ -381,6 +383,9 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
         companions: makes the raw tables of a companion the design has no file
             for, from its plan (e.g. :func:`tactcad.project_folder.companion_tables`);
             None refuses such a design, naming the file it lacks.
+        set_keys: the dotted keys ``data`` takes from elsewhere than the file (``--set``):
+            a rule between keys of the grasper's jaw names the one set
+            (:func:`tactcad.partlib.grasper_jaw.stated_jaw_errors`).
 
     Raises:
         DesignErrors: as :func:`load_project`.
@@ -388,7 +393,7 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
     problems = problems if problems is not None else Problems(path.name)
     files = companion_files(path, data, problems)
     named = _named(data)
-    plan = _plan_of(data, str(path), problems)
+    plan = _plan_of(data, str(path), problems, set_keys)
     if plan is not None and not construction_of(plan).test_rigs and named["rigs"] is None:
         # nothing to hold them: a rigs.toml that only lies beside it (another
         # design's, in a shared folder) is not this project's

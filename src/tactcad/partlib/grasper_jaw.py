@@ -254,16 +254,94 @@ def _check_depth(p: Problems, j: GrasperJawSection) -> None:
                      "(thickness_mm)")
 
 
-def _check_closed(p: Problems, j: GrasperJawSection) -> None:
+#: The keys the closed jaws' rule (:func:`_check_closed`) may name, in the order it names
+#: the stated ones when no ``--set`` value decides: this jaw's thickness, its width, the
+#: opposing jaw's thickness, the shaft's diameter.
+CLOSED_RULE_KEYS = ("thickness_mm", "width_mm", "width_clearance_mm", "opposing_jaw_mm",
+                    "shaft_diameter_mm")
+
+
+def closed_rule_blame(stated: Any, set_keys: Any = ()) -> tuple[str, ...]:
+    """The keys of :data:`CLOSED_RULE_KEYS` the closed jaws' rule names first: those set
+    (``--set`` or ``set=``; dotted ``grasper_jaw.<key>`` or bare), then those the table
+    states.
+
+    Args:
+        stated: the ``[grasper_jaw]`` keys the design states (file and set values).
+        set_keys: the keys given over the file, dotted or bare.
+
+    Returns:
+        The keys in the order the rule tries them (each once).
+    """
+    bare = {k.split(".", 1)[1] if k.startswith("grasper_jaw.") else k for k in set_keys
+            if "." not in k or k.startswith("grasper_jaw.")}
+    order = [k for k in CLOSED_RULE_KEYS if k in bare] + \
+        [k for k in CLOSED_RULE_KEYS if k in set(stated)]
+    return tuple(dict.fromkeys(order))
+
+
+def _closed_refusal(j: GrasperJawSection, key: str) -> tuple[float, str] | None:
+    """(value, allowed range) of ``key`` with which the two jaws closed pass the shaft, the
+    other keys as they are; None where no value of it does (or it does not set a size)."""
+    width, bore, o, t = jaw_width_mm(j), bore_mm(j), j.opposing_jaw_mm, j.thickness_mm
+    both_jaws = t + o
+    beside = closed_thickness_limit_mm(bore, width)  # both jaws' thickness the width leaves
+    across = closed_thickness_limit_mm(bore, both_jaws)  # the width both jaws leave
+    # each bound within the key's own range (GrasperJawSection), else no value of it passes
+    if key == "thickness_mm" and beside - o >= 1.0:
+        return t, (f"<= {fmt(math.floor((beside - o) * 1e4) / 1e4)} mm with the {fmt(o)} mm "
+                   "opposing jaw (opposing_jaw_mm)")
+    if key == "opposing_jaw_mm" and beside - t >= 0.5:
+        return o, (f"<= {fmt(math.floor((beside - t) * 1e4) / 1e4)} mm with this jaw's "
+                   f"{fmt(t)} mm (thickness_mm)")
+    if key == "width_mm" and j.width_mm is not None and across >= 1.0:
+        return width, (f"<= {fmt(math.floor(across * 1e4) / 1e4)} mm with the jaws' "
+                       f"{fmt(t)} + {fmt(o)} mm (thickness_mm, opposing_jaw_mm)")
+    if key == "width_clearance_mm" and j.width_mm is None and both_jaws < bore - 1e-9 \
+            and bore - across <= 6.0:
+        return j.width_clearance_mm, (f">= {fmt(math.ceil((bore - across) * 1e4) / 1e4)} mm "
+                                      f"with the jaws' {fmt(t)} + {fmt(o)} mm (thickness_mm, "
+                                      "opposing_jaw_mm)")
+    if key == "shaft_diameter_mm" and j.shaft_diameter_mm is not None:
+        if j.width_mm is not None:
+            least = math.hypot(width, both_jaws)
+        elif j.width_clearance_mm > 1e-9:  # (D - c)^2 + T^2 <= D^2
+            least = (j.width_clearance_mm ** 2 + both_jaws ** 2) / (2 * j.width_clearance_mm)
+        else:
+            return None
+        if least > 20.0:
+            return None
+        return j.shaft_diameter_mm, (f">= {fmt(math.ceil(least * 1e4) / 1e4)} mm for the "
+                                     f"{fmt(width)} mm wide jaws, {fmt(t)} + {fmt(o)} mm "
+                                     "thick (width_mm, thickness_mm, opposing_jaw_mm)")
+    return None
+
+
+def _check_closed(p: Problems, j: GrasperJawSection, blame: tuple[str, ...] = ()) -> None:
     """The two jaws closed pass the shaft: width x (thickness + the opposing jaw) inside its
-    bore (refused naming ``thickness_mm``, with the width and opposing jaw's keys; a jaw as
-    wide as the bore, which leaves no thickness at all, naming its width and the widest the
-    two jaws' thicknesses pass)."""
+    bore. Refused naming the first key of ``blame`` (:func:`closed_rule_blame`: the key a
+    user set, else one the table states) that some value of it lets pass, with that value's
+    range; else ``thickness_mm``, with the width and opposing jaw's keys; a jaw as wide as
+    the bore, which leaves no thickness at all, naming its width and the widest the two
+    jaws' thicknesses pass.
+
+    Args:
+        p: refusals are added here (field, value, allowed range, reason).
+        j: the table with its class defaults (:func:`with_class_defaults`; mm).
+        blame: the keys to name first, in order.
+    """
     width, bore = jaw_width_mm(j), bore_mm(j)
     both_jaws = j.thickness_mm + j.opposing_jaw_mm
     closed = math.hypot(width, both_jaws)
     if closed <= bore + 1e-9 or width > bore + 1e-9:  # too wide: the width's refusal says it
         return
+    for key in blame if width < bore - 1e-9 else ():
+        found = _closed_refusal(j, key)
+        if found is not None:
+            p.add(f"grasper_jaw.{key}", found[0], found[1],
+                  f"the closed jaws ({fmt(width)} x {fmt(both_jaws)} mm, diagonal "
+                  f"{fmt(round(closed, 4))} mm) pass the {shaft_words(j)} mm shaft")
+            return
     if width >= bore - 1e-9:  # as wide as the bore: no thickness of either jaw passes
         key = "width_mm" if j.width_mm is not None else "width_clearance_mm"
         widest = math.floor(closed_thickness_limit_mm(bore, both_jaws) * 1e4) / 1e4
@@ -675,6 +753,7 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
         The jaw's :class:`PartData` with its derived sizes and their reasons.
     """
     plan = context.plan
+    blame = closed_rule_blame(j.model_fields_set, getattr(context, "set_keys", ()))
     j = with_class_defaults(j)
     c = j.pocket_clearance_mm
     env = insert_envelope_mm(plan)
@@ -711,7 +790,7 @@ def derive(j: GrasperJawSection, context, p: Problems) -> PartData:
                  why=f"the insert ({fmt(env[2])} mm high) stands {fmt(j.tip_proud_mm)} mm proud "
                      "and stays inside the jaw's back")
     closed = math.hypot(width, j.thickness_mm + j.opposing_jaw_mm)
-    _check_closed(p, j)
+    _check_closed(p, j, blame)
     x1 = j.length_mm - j.distal_wall_mm
     x0 = x1 - pl
     least = pocket_start_limit_mm(j)
@@ -916,45 +995,74 @@ def design_table(plan, key: str) -> dict[str, Any]:
     return table
 
 
-def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "") -> PartData:
+def jaw_part(plan, table: Mapping[str, Any] | None = None, file: str = "",
+             set_keys: Any = ()) -> PartData:
     """The jaw for ``plan`` from a ``[grasper_jaw]`` table, by default the design's own
     (:func:`design_table`; defaults where left out).
+
+    Args:
+        plan: the design's plan (its insert).
+        table: the ``[grasper_jaw]`` table (mm, degrees); None: the design's.
+        file: the design file's name, for the messages.
+        set_keys: the keys given over the file (``--set``, dotted): a rule between keys
+            names the one set (:func:`closed_rule_blame`).
+
+    Returns:
+        The jaw's :class:`PartData`.
 
     Raises:
         DesignErrors: every refusal, each naming the field, value and allowed range.
     """
     if table is None:
         table = design_table(plan, "grasper_jaw")
-    return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan)
+    return part_from_table("grasper_jaw", GrasperJawSection, derive, table, file, plan=plan,
+                           set_keys=tuple(set_keys))
 
 
-def stated_jaw_errors(plan, file: str = "") -> list:
-    """The refusals of the jaw a design states (``[grasper_jaw]``) for its own insert, by
-    the rules :func:`jaw_part` applies (the closed jaws inside the shaft, the pivot, the
-    pocket round the insert, the jaw's length to hold it, ...): run when the design is read,
-    so that no command (``verify``, ``check``, ``export``, ``grasp``) takes a jaw the insert
-    cannot fit. A design without ``[grasper_jaw]`` (the paper's macro array), or whose
-    construction gives no kernel-free envelope (the stacked array, whose jaw nothing
-    derives), has none.
+def stated_jaw_errors(plan, file: str = "", set_keys: Any = ()) -> list:
+    """The refusals of the grasper a design states for its own insert: its jaw
+    (``[grasper_jaw]``) by the rules :func:`jaw_part` applies (the closed jaws inside the
+    shaft, the pivot, the pocket round the insert, the jaw's length to hold it, ...) and its
+    tissue slab against that jaw (``[tissue_slab]``: as wide as the jaw's face at most,
+    covering the window over the tips; :mod:`tactcad.partlib.tissue_slab`). Run when the
+    design is read, so that no command (``verify``, ``check``, ``export``, ``grasp``) takes
+    a grasper the insert cannot fit. (The shaft, ``[grasper_shaft]``, is held to the jaw's
+    bore by the design's own rules, :func:`tactcad.design.array_plan.check_in_use`.) A
+    design that states neither table (the paper's macro array), or whose construction does
+    not seat in a jaw (the stacked array: no jaw search in its construction's entry,
+    :mod:`tactcad.design.construction_registry`, and no kernel-free envelope), has none;
+    the slab is judged only against a jaw that takes the insert.
 
     Args:
         plan: the design's plan (``plan.raw`` its tables, ``--set`` values included).
         file: the design file's name, for the messages.
+        set_keys: the keys given over the file (``--set KEY=VALUE``, dotted): a rule
+            between keys names the one set.
 
     Returns:
-        Every refusal (:class:`~tactcad.errors.DesignError`: ``grasper_jaw.<key>``, its
-        value in mm or degrees and the allowed range); empty when the jaw takes the insert.
+        Every refusal (:class:`~tactcad.errors.DesignError`: ``grasper_jaw.<key>`` or
+        ``tissue_slab.<key>``, its value in mm or degrees and the allowed range); empty when
+        the jaw takes the insert and the slab lies on it.
     """
     from tactcad.errors import DesignErrors
+    from tactcad.partlib.tissue_slab import slab_part
 
-    if "grasper_jaw" not in (getattr(plan, "raw", None) or {}) \
-            or insert_envelope_mm(plan) is None:
+    raw = getattr(plan, "raw", None) or {}
+    if not {"grasper_jaw", "tissue_slab"} & set(raw) or insert_envelope_mm(plan) is None:
         return []
-    try:
-        jaw_part(plan, file=file)
+    errors: list = []
+    try:  # the design's jaw, or the default jaw of a design that states none
+        jaw = jaw_part(plan, file=file, set_keys=set_keys).geometry
     except DesignErrors as exc:
-        return list(exc.errors)
-    return []
+        if "grasper_jaw" in raw:
+            errors.extend(exc.errors)
+        return errors  # a slab is judged against a jaw that takes the insert
+    if "tissue_slab" in raw:
+        try:
+            slab_part(jaw, design_table(plan, "tissue_slab"), file)
+        except DesignErrors as exc:
+            errors.extend(exc.errors)
+    return errors
 
 
 IN_USE_PART = RigPart(key="grasper_jaw", section=GrasperJawSection, host="", derive=derive, build=build,

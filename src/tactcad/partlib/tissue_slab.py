@@ -68,6 +68,11 @@ def derive(s: TissueSlabSection, context, p: Problems) -> PartData:
     why = f"covers the jaw's {fmt(jaw.length_mm)} x {fmt(jaw.width_mm)} mm face"
     length = jaw.length_mm if s.length_mm is None else s.length_mm
     width = jaw.width_mm if s.width_mm is None else s.width_mm
+    if s.width_mm is not None:
+        p.within("tissue_slab.width_mm", s.width_mm, round(slab_least_width_mm(jaw), 4),
+                 jaw.width_mm, why=f"the slab lies on the opposing jaw, as wide as the "
+                 f"{fmt(jaw.width_mm)} mm jaw's face (grasper_jaw.width_mm), and covers its "
+                 "window over the tips on the jaw's axis")
     g = TissueSlabGeometry(length, width, s.thickness_mm, s.base)
     return PartData(
         name="tissue_slab", kind="purchased", process=Process("tissue or phantom", Method.BOUGHT),
@@ -79,6 +84,14 @@ def derive(s: TissueSlabSection, context, p: Problems) -> PartData:
                                      else "stated")),
         frames={"bottom": Seat((0, 0, 0), (0, 0, -1), (1, 0, 0)),
                 "top": Seat((0, 0, s.thickness_mm), (0, 0, 1), (1, 0, 0))})
+
+
+def slab_least_width_mm(jaw) -> float:
+    """The narrowest slab (mm) that covers the jaw's window over the tips: the slab lies
+    centred on the jaw's axis, the window ``window_width_mm`` wide, its centre
+    ``window_offset_mm[1]`` off the axis (a
+    :class:`~tactcad.partlib.grasper_jaw.GrasperJawGeometry`, mm)."""
+    return jaw.window_width_mm + 2 * abs(jaw.window_offset_mm[1])
 
 
 def build(g: TissueSlabGeometry):
