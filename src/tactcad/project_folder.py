@@ -878,9 +878,44 @@ def default_design(folder: str | Path = ".", refuse_unreadable: bool = True) -> 
     return found[0] if found else DEFAULT_DESIGN
 
 
+#: Tables only a design file holds: a ``*.toml`` with one of them that is no design is a
+#: design with a slip in it (a table renamed or lost), not another tool's file.
+DESIGN_ONLY_TABLES = ("design", "arms", "element", "array", "die")
+#: What a design file holds, as a refusal says it.
+DESIGN_FILE_WORDS = "a design file: a [design] and an [arms] table, or a silicon die's [die] table"
+
+
+def hollow_design_fault(tables: dict[str, Any]) -> str:
+    """Why a ``*.toml`` that reads as TOML may be a project's design file gone wrong rather
+    than another tool's file: empty (a write the disk cut short leaves one), no table at all,
+    or a design's own table (:data:`DESIGN_ONLY_TABLES`) without being a design.
+
+    Args:
+        tables: the file's parsed TOML.
+
+    Returns:
+        The fault in words, "" when the file is a design or plainly another kind of file.
+    """
+    from tactcad.products import product_of_tables
+
+    if not tables:
+        return "it is empty: no table and no key"
+    if not any(isinstance(v, dict) for v in tables.values()):
+        return "it has no table, only the keys " + ", ".join(sorted(tables)[:4])
+    if isinstance(tables.get("design"), dict) and isinstance(tables.get("arms"), dict):
+        return ""
+    if not product_of_tables(tables).is_default:
+        return ""
+    held = [f"[{t}]" for t in DESIGN_ONLY_TABLES if isinstance(tables.get(t), dict)]
+    if held:
+        return f"it has a design's {', '.join(held)} but not what a design needs"
+    return ""
+
+
 def unreadable_tomls(folder: Path) -> list[DesignError]:
-    """The ``*.toml`` files of ``folder`` that cannot be read as TOML, each as the
-    refusal :func:`tactcad.vocabulary.schema.read_toml` gives it (the file, its fault).
+    """The ``*.toml`` files of ``folder`` that cannot be read as TOML, or that read but may
+    be the project's design file gone wrong (:func:`hollow_design_fault`: empty, no table,
+    a design's table without being one), each as a refusal naming the file and its fault.
 
     Args:
         folder: the working folder.
@@ -894,9 +929,12 @@ def unreadable_tomls(folder: Path) -> list[DesignError]:
     for path in sorted(folder.glob("*.toml")):
         if path.is_file():
             try:
-                read_toml(path, "design file")
+                fault = hollow_design_fault(read_toml(path, "design file"))
             except DesignError as exc:
                 found.append(exc)
+                continue
+            if fault:
+                found.append(DesignError("design file", str(path), DESIGN_FILE_WORDS, fault))
     return found
 
 

@@ -4,6 +4,12 @@ no message prints a value as ``None``."""
 
 from __future__ import annotations
 
+import json
+import re
+
+import pytest
+
+from conftest import run_cli
 from tactcad import cli
 from tactcad.errors import DesignError
 
@@ -129,3 +135,29 @@ def test_a_jaw_file_loaded_as_a_design_is_named_a_jaw_file(tmp_path, monkeypatch
                      "0.3", "3", "--full-scale-force", "0.05", "--out", "x.toml"]) == 2
     err = capsys.readouterr().err
     assert "--design = 'jaw12.toml'" in err and "jaw file" in err and "errors in" not in err
+
+
+@pytest.mark.parametrize("text, fault", [
+    ("", "empty"),  # a copy the full disk cut short
+    ("hello = 1\n", "no table"),
+    ('[design]\nname = "probe"\n', "[design]"),
+])
+def test_a_hollow_design_file_is_refused_not_swapped_for_the_example(tmp_path, monkeypatch,
+                                                                    text, fault):
+    import tactcad
+
+    (tmp_path / "probe.toml").write_text(text, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    result = run_cli("budget", "--json")
+    error = json.loads(result.stdout)["error"]
+    assert result.returncode == 2 and error["value"] == "probe.toml" and fault in error["message"]
+    with pytest.raises(DesignError, match=re.escape(fault)):
+        tactcad.load()
+    assert not (tmp_path / "exports").exists()
+
+
+def test_another_tools_toml_beside_no_design_leaves_the_example_announced(tmp_path, monkeypatch):
+    (tmp_path / "pyproject.toml").write_text('[tool.ruff]\nline-length = 99\n', encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    result = run_cli("readout")
+    assert result.returncode == 0 and "shipped example" in result.stderr
