@@ -71,3 +71,19 @@ def test_a_die_project_is_read_as_its_word_or_folder_like_an_array(tmp_path, com
         answer = run_cli(command, given, "--json")
         assert answer.returncode == 0, answer.stdout[-400:]
         assert json.loads(answer.stdout) == json.loads(by_option.stdout)
+
+
+def test_a_labs_jaw_file_is_copied_into_the_project_with_its_comments(tmp_path):
+    # the jaw table was written again from its values: the lab's notes on where each value
+    # comes from (its drawing's number) were lost on the way into the project
+    lab = tmp_path / "lab jaw.toml"
+    source = (ROOT / "hardware" / "robotic_jaw_8mm_mems" / "robotic_jaw_8mm_mems_jaw.toml")
+    lab.write_text("# our drawing PP-8-002, rev C\n" + source.read_text(encoding="utf-8"),
+                   encoding="utf-8")
+    made = run_cli("design", "--jaw", lab, "--construction", "mems-die", "--kr-over-km", "10",
+                   "--kobj-range", "0.3", "3", "--full-scale-force", "0.01", "--columns", "8",
+                   "--out", tmp_path / "probe", "--quiet")
+    assert made.returncode == 0, made.stderr[-500:]
+    copied = tmp_path / "probe" / "probe_jaw.toml"
+    assert copied.read_text(encoding="utf-8") == lab.read_text(encoding="utf-8")
+    assert run_cli("strength", tmp_path / "probe", "--quiet").returncode == 0

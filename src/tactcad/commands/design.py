@@ -783,10 +783,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
                          "tactcad design " + " ".join(design_options(args)), reasons,
                          max_grasp_force_N=grasp, kobj_accuracy_rel=accuracy)
     beside = {}
-    if jaw_file:
-        import tomli_w
-
-        beside[stated] = tomli_w.dumps({"grasper_jaw": dict(jaw)})
+    if jaw_file:  # the lab's file as it wrote it: its comments say where each value comes from
+        beside[stated] = Path(jaw_file).read_text(encoding="utf-8-sig")
     if folder is not None:  # a project folder, as an array's design writes one
         from tactcad.project_folder import write_die_project
 
