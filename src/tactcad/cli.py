@@ -61,6 +61,48 @@ COMMANDS: dict[str, str] = {
     "diff": "tactcad.commands.diff",
     "watch": "tactcad.commands.watch",
 }
+#: Each command's one-line summary, as ``tactcad --help`` lists it: the top-level help
+#: and ``--version`` build the list from here and import no command module (a test holds
+#: it equal to what each module registers).
+SUMMARIES: dict[str, str] = {
+    "new": "make a sensor project folder: design, rigs, scenes, README, CI workflow",
+    "export": "write STEP, wire-EDM DXF, scenes, drawings, BOM and manifest",
+    "check": "run part, DXF, STEP and interference checks",
+    "verify": "verification matrix: each requirement, its prediction, margin and pass",
+    "scenes": "list the scenes (array, wire-cut layout, test rigs) and their parts",
+    "bench": ("speed benchmarks (export, stiffness, modal, die, atlas, closed-form, "
+              "montecarlo, sweep)"),
+    "stiffness": "tip stiffness K (N/mm) of one element at a ladder level",
+    "table1": "predicted vs measured stiffness of every element (Table 1)",
+    "modal": "natural frequencies (Hz) of each element as clamped",
+    "lumped": "lumped model of a stiffness sensing unit: R from K_obj or K_obj from R",
+    "evaluate": "simulate the array evaluation rig: R per element, sample and load step",
+    "table2": "each model's error against the paper's 48 measured R (Table 2)",
+    "calibrate": "fit K, K_v, V0 from calibration readings and audit them against the design",
+    "strength": ("every element's force limits and its stress, gauge strain and tip "
+                 "deflection at the design's rated full-scale force"),
+    "tolerance": "Monte Carlo of the tolerances: K per element, R per unit, K_obj band",
+    "readout": ("per element: gauge strain over the grid, K_v, K_v/K, force and "
+                "K_obj resolution of the read-out chain"),
+    "thermal": ("per element: zero and span drift per kelvin, self-heating offset, "
+                "K_obj error per kelvin across the force range, what a dummy gauge "
+                "cancels"),
+    "budget": ("the K_obj error budget: each source's relative K_obj error over the "
+               "K_obj range, their RSS and worst case, the source that dominates"),
+    "grasp": ("the grasp as a virtual experiment: a pivoting jaw closes on tissue; "
+              "each unit's radii, travels, R and K_obj read, as laid out and paired "
+              "at equal radius; the leads through the shaft"),
+    "crosstalk": ("crosstalk of an array (clamped stack or comb): n x n gauge "
+                  "sensitivity, tip displacements, crosstalk_rel, decoupling matrix"),
+    "materials": "list the material grades and strain gauges a design may name",
+    "sweep": "design grids, correction refit and Monte Carlo on Dask",
+    "design": "inverse design: K_r/K_m, K_obj range and full-scale force -> design file",
+    "atlas": ("what fits a jaw: feasible targets and the Pareto front of every "
+              "product and material, on Dask"),
+    "die": "a silicon MEMS die for a grasper's jaw: plan, GDSII masks, KLayout DRC",
+    "diff": "what changed between two exports (or two design files)",
+    "watch": "re-export on save and serve the review page (live reload)",
+}
 #: Every command module, in the order ``tactcad --help`` lists their commands.
 COMMAND_MODULES = tuple(dict.fromkeys(COMMANDS.values()))
 
@@ -214,8 +256,10 @@ class Parser(argparse.ArgumentParser):
 
 def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     """The command-line parser. Given the command line, it registers only the command it
-    names (:data:`COMMANDS`); without one, or for a word that is no command (help, a typo
-    argparse then refuses with the full list), every command.
+    names (:data:`COMMANDS`); for a line naming none (``--version``, ``--help``, a typo
+    argparse then refuses with the full list), every command by its summary alone
+    (:data:`SUMMARIES`: no command module imported, so that start-up stays short); for
+    None, every command with all its options (the reference docs, the tests).
 
     Args:
         argv: the command line (without the program name), or None for every command.
@@ -230,6 +274,11 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"tactcad {VERSION}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     named = COMMANDS.get(command_of(argv or []) or "")
+    if argv is not None and not named:
+        # only the list of commands is shown or refused: no command's options are read
+        for command, summary in SUMMARIES.items():
+            sub.add_parser(command, help=summary)
+        return parser
     for name in (named,) if named else COMMAND_MODULES:
         try:
             module = importlib.import_module(name)
@@ -346,13 +395,13 @@ def dispatch(argv: list[str], as_json: bool) -> int:
 def _dispatched(argv: list[str], as_json: bool) -> int:
     """:func:`dispatch`'s work, while :data:`tactcad.errors.COMMAND_LINE_RUN` is set."""
     try:
-        from tactcad.drawings.frame import epoch_date
+        from tactcad.drawings.source_date import epoch_date
 
         # before any import reads it (numpy's f2py turns a bad value into a traceback)
         epoch_date(os.environ)
         args = parse_checked(argv)
         if not getattr(args, "func", None):
-            build_parser().print_help()
+            build_parser(argv).print_help()
             return EXIT_INPUT
         if not hasattr(args, "no_cache"):  # a command without a store (bench: costs)
             return int(args.func(args) or 0)

@@ -34,7 +34,6 @@ import shutil
 import tempfile
 from contextvars import ContextVar
 from dataclasses import dataclass
-from importlib import metadata
 from pathlib import Path, PurePosixPath
 from typing import Any, Callable, Iterator, Mapping, Sequence, TypeVar
 
@@ -52,6 +51,8 @@ STACK_PACKAGES = ("build123d", "cadquery", "cadquery-ocp", "ezdxf", "trimesh", "
 
 def stack_versions() -> dict[str, str]:
     """Installed version of each package of the CAD stack (``not installed`` if absent)."""
+    from importlib import metadata  # 0.1 s to import: only a store key needs it
+
     out = {}
     for pkg in STACK_PACKAGES:
         try:

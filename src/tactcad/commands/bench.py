@@ -189,13 +189,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_output_args(v, "print one JSON object: seconds and verdicts per level and of auto")
     v.set_defaults(func=run_verify)
     c = bsub.add_parser("check", help="check on a current export: whole-process seconds "
-                                      "(median of --runs) and each group's (goal <= 5 s)")
+                                      "(median of --runs) and each group's (goal <= 5 s); "
+                                      "the start-up, tactcad --version (goal <= 0.3 s)")
     add_design_arg(c)
     c.add_argument("--runs", type=count(1, 20, "whole-process runs"), default=3, metavar="N",
                    help="whole-process runs of tactcad check, 1 ... 20 (default: 3)")
     c.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="export folder to make current and check (default: a temporary one)")
-    add_output_args(c, "print one JSON object: export_s, runs_s, median_s, groups, goal_s")
+    add_output_args(c, "print one JSON object: export_s, runs_s, median_s, groups, goal_s, "
+                       "startup_s, startup_goal_s")
     c.set_defaults(func=run_check)
     p.set_defaults(func=lambda args: (p.print_help(), 2)[1])
 

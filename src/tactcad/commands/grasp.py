@@ -10,7 +10,6 @@ from tactcad.commands.finite_json import dumps
 from tactcad.commands.options import (GRASP_OPTION_OF, grasp_option_error,
                                       keep_option_defaults, number, renamed_option)
 from tactcad.mechanics.ladder import models
-from tactcad.design.readout_section import LEAD_WIRE
 
 from tactcad.in_use.grasp_experiment import (DEFAULT_JAW_BEYOND_MM, DEFAULT_OPENING_DEG,
                                              DEFAULT_PIVOT_BEHIND_MM, DEFAULT_SLAB_MM,
@@ -291,6 +290,8 @@ def render(record: dict) -> str:
         if pl and pl["reason"]:  # units a layout has no sites for, said, not dropped
             lines += ["", f"{words}: {pl['reason']} (not laid: "
                           f"{', '.join(pl['unplaced']) or 'none'})"]
+    from tactcad.design.readout_section import LEAD_WIRE
+
     ld = record["leads"]
     lines += ["", f"leads: {ld['bridges']} {ld['connection']} quarter bridges, {ld['leads']} "
                   f"leads of {ld['wire_diameter_mm']:g} mm (AWG {LEAD_WIRE['awg']} PTFE), packing "

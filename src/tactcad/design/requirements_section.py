@@ -60,17 +60,10 @@ STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_
                     "kobj_accuracy_rel", "max_grasp_force_N")
 
 
-#: The largest targets a design file states (the design command's options take the same).
-MAX_FULL_SCALE_FORCE_N = 1000.0
-MAX_KOBJ_N_PER_MM = 1e4
-#: The least full-scale force a design file or option states (N): no read-out chain resolves
-#: a force near it, and far below it a die's cavity depth rounds to zero.
-MIN_FULL_SCALE_FORCE_N = 1e-9
-#: The least object stiffness a K_obj range states (N/mm): the atlas's softest range end;
-#: far below it K_obj is lost in K_m + K_obj's rounding and eq. 3 has no answer.
-MIN_KOBJ_N_PER_MM = 1e-6
-MAX_KR_OVER_KM = 1000.0
-MAX_GRASP_FORCE_N = 100.0
+# the ranges, kept where nothing heavy is imported (a command's --help reads them)
+from tactcad.design.requirement_limits import (  # noqa: E402,F401 (their names here too)
+    MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N, MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
+    MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 
 
 class RequirementsSection(Section):

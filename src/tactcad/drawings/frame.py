@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Mapping
 
 from tactcad.errors import DesignError
 from tactcad.drawings.sheet import Sheet, text_width
+from tactcad.drawings.source_date import epoch_date  # noqa: F401 (its name here too)
 
 if TYPE_CHECKING:  # the design model costs a second to import; the CLI reads epoch_date first
     from tactcad.design.array_plan import Plan
@@ -25,21 +26,6 @@ def general_tolerance(plan) -> str:
     return tolerances_of(plan.raw).general_text
 FRAME = (20.0, 10.0, 410.0, 287.0)  # left, top, right, bottom (A3, ISO 5457)
 TITLE_W, TITLE_H = 180.0, 63.0        # seven rows of 9 mm
-
-
-def epoch_date(environ: Mapping[str, str]) -> str | None:
-    """``SOURCE_DATE_EPOCH`` of ``environ`` as an ISO 8601 UTC date, or None when unset or empty.
-
-    Raises:
-        DesignError: it is not a whole number of seconds in 0 .. 253402300799.
-    """
-    epoch = environ.get("SOURCE_DATE_EPOCH", "").strip()
-    if not epoch:
-        return None
-    if not epoch.isdigit() or int(epoch) > 253402300799:
-        raise DesignError("SOURCE_DATE_EPOCH", epoch, "a whole number of seconds since "
-                          "1970-01-01 UTC, 0 .. 253402300799")
-    return datetime.datetime.fromtimestamp(int(epoch), datetime.timezone.utc).date().isoformat()
 
 
 def sheet_date(plan: Plan, environ: Mapping[str, str] | None = None) -> str:

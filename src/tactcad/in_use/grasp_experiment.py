@@ -34,11 +34,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.in_use.jaw_kinematics import (OPENING_ANGLE_RANGE_DEG, JawGeometry, check_angle_deg,
                                             PIN_TO_TIP_RANGE_MM, indentation_mm)
@@ -49,6 +48,9 @@ from tactcad.in_use.radius_pairs import (PairedLayout, along_row_layout, insert_
 from tactcad.mechanics.contact import (BASES, Punch, single_punch_unit_compliance,
                                        unit_punch_compliance)
 from tactcad.mechanics.hard_stops import engagement_travel_mm
+
+if TYPE_CHECKING:  # annotations only: the design model costs a second to import
+    from tactcad.design.array_plan import Plan
 
 #: Tissue profiles between the jaws (see the module docstring).
 PROFILES = ("slab", "wedge")

@@ -131,14 +131,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Mapping, NamedTuple
+from typing import TYPE_CHECKING, Any, Callable, Mapping, NamedTuple
 
 import numpy as np
 
-from tactcad.design.array_plan import Plan
 from tactcad.errors import DesignError
 from tactcad.in_use.tip_zeroing import ZEROING_FLAT_FLATNESS_MM
 from tactcad.mechanics.contact import ContactError
+
+if TYPE_CHECKING:  # annotations only: the design model costs a second to import
+    from tactcad.design.array_plan import Plan
 
 #: Points of the log-spaced K_obj grid the budget is evaluated on (ends included).
 BUDGET_POINTS = 7

@@ -17,9 +17,12 @@ rule is measured against. Units: mm.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from tactcad.design.array_plan import Plan
 from tactcad.in_use.jaw_kinematics import JawGeometry, along_jaw_mm, tip_radius_mm
+
+if TYPE_CHECKING:  # annotations only: the design model costs a second to import
+    from tactcad.design.array_plan import Plan
 
 #: The largest |r_m / r_r − 1| of a unit at "equal radius" (issue 43: within 2 %).
 EQUAL_RADIUS_TOLERANCE_REL = 0.02

@@ -40,8 +40,8 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from tactcad.mechanics.contact import (CONVERGED_REL, ContactError, Punch, Sample, check_sample,
-                                       converged_punches)
+from tactcad.mechanics.contact import (CONVERGED_KIND, CONVERGED_REL, ContactError, Punch, Sample,
+                                       check_sample, converged_punches)
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
 from tactcad.store import kept_per_process, kept_result
 
@@ -190,7 +190,7 @@ def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
     unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
 
     def solved(tips: list[Punch]):
-        return kept_result("converged punches",
+        return kept_result(CONVERGED_KIND,
                            lambda: converged_punches(tips, unit, tissue.convergence_rel),
                            tuple(tips), unit, tissue.convergence_rel)
 

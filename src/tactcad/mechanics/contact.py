@@ -52,7 +52,7 @@ from typing import Sequence
 
 import numpy as np
 
-from tactcad.store import kept_per_process
+from tactcad.store import kept_per_process, kept_result
 from tactcad.errors import TactcadError
 
 #: Largest cell edge the boundary-element mesh aims for (mm): the cosine-graded cells of a
@@ -283,9 +283,23 @@ _T_POINTS = 8
 _T_END = 36.0
 
 
+#: The kind the result store keeps a correction table under (:func:`_correction_spline`).
+CORRECTION_KIND = "layer correction table"
+
+
 @functools.lru_cache(maxsize=16)
 def _correction_spline(base: str, poisson_ratio: float) -> np.ndarray:
-    """Cubic-spline coefficients of f(ρ) on [0, :data:`CORRECTION_END`], shape (4, n − 1)."""
+    """Cubic-spline coefficients of f(ρ) on [0, :data:`CORRECTION_END`], shape (4, n − 1);
+    kept per process and in the result store of :func:`tactcad.store.keeping_results`: the
+    table is the same for every design on the base and ν, and tabulating it (17 million
+    Bessel values, and SciPy to import) cost a grasp on a new tissue thickness seconds."""
+    return kept_result(CORRECTION_KIND, lambda: _tabulated_correction(base, poisson_ratio),
+                       base, poisson_ratio, CORRECTION_STEP, CORRECTION_END, _T_PANEL,
+                       _T_POINTS, _T_END)
+
+
+def _tabulated_correction(base: str, poisson_ratio: float) -> np.ndarray:
+    """:func:`_correction_spline`'s coefficients, computed."""
     from scipy.interpolate import CubicSpline
     from scipy.special import j0
 
@@ -1072,10 +1086,21 @@ def single_punch_unit_compliance(width_x_mm: float, depth_z_mm: float, poisson_r
                                        poisson_ratio, thickness_mm, base)[0, 0])
 
 
+#: The kind the result store keeps a converged solve under (:func:`tactcad.store.kept_result`):
+#: one for every caller (the grasp, the rig models, the budget), so each reads the others'.
+CONVERGED_KIND = "converged punches"
+
+
 @kept_per_process(maxsize=64)
 def _converged_unit(punches: tuple[Punch, ...], poisson_ratio: float,
                     thickness_mm: float | None, base: str) -> ConvergedPunches:
-    return converged_punches(punches, Sample(1.0, poisson_ratio, thickness_mm, base))
+    """The punches converged at E = 1 MPa, kept per process and in the result store of
+    :func:`tactcad.store.keeping_results` (a command's ``--cache``): a later run (the grasp
+    again, verify, the budget) reads a solve back instead of solving it afresh."""
+    unit = Sample(1.0, poisson_ratio, thickness_mm, base)
+    return kept_result(CONVERGED_KIND,
+                       lambda: converged_punches(list(punches), unit, CONVERGED_REL),
+                       tuple(punches), unit, CONVERGED_REL)
 
 
 def unit_punch_compliance(punches, poisson_ratio: float, thickness_mm: float | None = None,

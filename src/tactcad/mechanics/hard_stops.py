@@ -16,9 +16,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
-from tactcad.design.array_plan import HardStop, Plan
-from tactcad.mechanics.element_strength import plan_strength
+if TYPE_CHECKING:  # annotations only: the design model costs a second to import
+    from tactcad.design.array_plan import HardStop, Plan
 
 
 @dataclass(frozen=True)
@@ -117,6 +118,8 @@ def stop_verdicts(plan: Plan, full_scale_force_N: float,
     """
     if not plan.hard_stops:
         return []
+    from tactcad.mechanics.element_strength import plan_strength
+
     records = {r.element: r for r in plan_strength(plan, full_scale_force_N, model)}
     out = []
     for stop in plan.hard_stops:

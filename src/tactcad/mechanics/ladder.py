@@ -21,12 +21,16 @@ from __future__ import annotations
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, replace
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
-from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.errors import TactcadError
 from tactcad.mechanics.level_registry import LevelRegistry
 from tactcad.mechanics.stiffness_result import StiffnessResult
+
+if TYPE_CHECKING:  # annotations only: the design model costs a second to import, and every
+    # command's --help reads the levels (models()) from here
+    from tactcad.design.array_plan import ElementGeometry, Material
+
 
 @dataclass(frozen=True)
 class Level:
