@@ -1033,14 +1033,14 @@ def load_design(path: str | Path | None = None) -> Plan:
             its allowed range (the message names file, field, value and range;
             :class:`~tactcad.errors.DesignErrors` lists every one found); a silicon
             die's file (made by ``tactcad die``); a stated ``[grasper_jaw]`` its insert
-            cannot fit (:func:`tactcad.partlib.grasper_jaw.stated_jaw_errors`).
+            cannot fit (:func:`tactcad.partlib.tissue_slab.stated_grasper_errors`).
     """
     from tactcad.design.file_kind import read_array_tables
-    from tactcad.partlib.grasper_jaw import stated_jaw_errors
+    from tactcad.partlib.tissue_slab import stated_grasper_errors
 
     p = Path(path) if path is not None else DEFAULT_DESIGN
     plan = plan_from_dict(read_array_tables(p), source=str(p), file=p.name)
-    jaw_errors = stated_jaw_errors(plan, p.name)  # the jaw it states takes its insert
+    jaw_errors = stated_grasper_errors(plan, p.name)  # the jaw it states takes its insert
     if jaw_errors:
         raise DesignErrors(jaw_errors)
     return plan

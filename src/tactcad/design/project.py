@@ -211,7 +211,7 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems,
              set_keys: Iterable[str] = ()) -> Plan | None:
     if design is None:
         return None
-    from tactcad.partlib.grasper_jaw import stated_jaw_errors
+    from tactcad.partlib.tissue_slab import stated_grasper_errors
 
     model, found = validate_design(design, Path(source).name)
     too_few = stacked_columns_error(design, Path(source).name)  # a row must hold a pair
@@ -221,7 +221,7 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems,
     plan = plan_from_model(model, design, source)
     # the jaw the design states takes its insert (the rules its part applies), refused here
     # rather than first by the command that builds it
-    problems.extend(stated_jaw_errors(plan, Path(source).name, tuple(set_keys)))
+    problems.extend(stated_grasper_errors(plan, Path(source).name, tuple(set_keys)))
     return plan
 
 
@@ -385,7 +385,7 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
             None refuses such a design, naming the file it lacks.
         set_keys: the dotted keys ``data`` takes from elsewhere than the file (``--set``):
             a rule between keys of the grasper's jaw names the one set
-            (:func:`tactcad.partlib.grasper_jaw.stated_jaw_errors`).
+            (:func:`tactcad.partlib.tissue_slab.stated_grasper_errors`).
 
     Raises:
         DesignErrors: as :func:`load_project`.

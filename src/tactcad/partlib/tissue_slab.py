@@ -109,4 +109,51 @@ def slab_part(jaw, table: Mapping[str, Any] | None = None, file: str = "") -> Pa
     return part_from_table("tissue_slab", TissueSlabSection, derive, table, file, jaw=jaw)
 
 
+def stated_grasper_errors(plan, file: str = "", set_keys: Any = ()) -> list:
+    """The refusals of the grasper a design states for its own insert: its jaw
+    (``[grasper_jaw]``) by the rules :func:`~tactcad.partlib.grasper_jaw.jaw_part`
+    applies (the closed jaws inside the shaft, the pivot, the pocket round the insert, the
+    jaw's length to hold it, ...) and its tissue slab against that jaw (``[tissue_slab]``:
+    as wide as the jaw's face at most, covering the window over the tips,
+    :func:`slab_part`; judged here, where the slab's module knows both parts). Run when the
+    design is read, so that no command (``verify``, ``check``, ``export``, ``grasp``) takes
+    a grasper the insert cannot fit. (The shaft, ``[grasper_shaft]``, is held to the jaw's
+    bore by the design's own rules, :func:`tactcad.design.array_plan.check_in_use`.) A
+    design that states neither table (the paper's macro array), or whose construction does
+    not seat in a jaw (the stacked array: no jaw search in its construction's entry,
+    :mod:`tactcad.design.construction_registry`, and no kernel-free envelope), has none;
+    the slab is judged only against a jaw that takes the insert.
+
+    Args:
+        plan: the design's plan (``plan.raw`` its tables, ``--set`` values included).
+        file: the design file's name, for the messages.
+        set_keys: the keys given over the file (``--set KEY=VALUE``, dotted): a rule
+            between keys names the one set.
+
+    Returns:
+        Every refusal (:class:`~tactcad.errors.DesignError`: ``grasper_jaw.<key>`` or
+        ``tissue_slab.<key>``, its value in mm or degrees and the allowed range); empty when
+        the jaw takes the insert and the slab lies on it.
+    """
+    from tactcad.errors import DesignErrors
+    from tactcad.partlib.grasper_jaw import design_table, insert_envelope_mm, jaw_part
+
+    raw = getattr(plan, "raw", None) or {}
+    if not {"grasper_jaw", "tissue_slab"} & set(raw) or insert_envelope_mm(plan) is None:
+        return []
+    errors: list = []
+    try:  # the design's jaw, or the default jaw of a design that states none
+        jaw = jaw_part(plan, file=file, set_keys=set_keys).geometry
+    except DesignErrors as exc:
+        if "grasper_jaw" in raw:
+            errors.extend(exc.errors)
+        return errors  # a slab is judged against a jaw that takes the insert
+    if "tissue_slab" in raw:
+        try:
+            slab_part(jaw, design_table(plan, "tissue_slab"), file)
+        except DesignErrors as exc:
+            errors.extend(exc.errors)
+    return errors
+
+
 IN_USE_PART = RigPart(key="tissue_slab", section=TissueSlabSection, host="", derive=derive, build=build)
