@@ -679,3 +679,99 @@ def test_a_stopped_atlas_is_resumed_judging_only_the_points_it_had_not_finished(
     assert not list(cache.rglob("*.partial.parquet"))  # the whole table kept, not the part
     fourth = run_cli(*argv)
     assert json.loads(fourth.stdout)["reused"] is True and len(asked) == 3
+
+
+#: A lab's jaw for an 8 mm shaft (the docs' [grasper_jaw] keys): the comb stands too tall
+#: and too wide for its pocket, the die seats.
+LAB_JAW_8MM = """[grasper_jaw]
+shaft_diameter_mm = 8.0
+width_mm = 4.8
+length_mm = 20.0
+thickness_mm = 3.0
+opposing_jaw_mm = 3.0
+pin_diameter_mm = 1.5
+pin_inset_mm = 1.3
+opening_angle_deg = 40.0
+pocket_depth_mm = 1.0
+"""
+
+
+@pytest.mark.slow  # a die judged at two points on a local cluster
+def test_an_atlas_names_each_product_it_left_out_and_reuses_the_same_jaw_in_another_file(
+        tmp_path):
+    """The atlas of an 8 mm jaw printed only `mems-die silicon: 10/16 feasible`: the comb
+    it left out was named nowhere. And the same jaw in another file was judged again."""
+    (tmp_path / "LABJAW.toml").write_text(LAB_JAW_8MM, encoding="utf-8")
+    argv = ["atlas", "--points", "2", "--force-range", "0.002", "0.05", "--workers", "1",
+            "--quiet", "--cache", tmp_path / "cache"]
+    r = run_cli(*argv, "--jaw", "LABJAW.toml", "--out", "a", "--json", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    s = json.loads(r.stdout)
+    assert [g["product"] for g in s["products"]] == ["mems-die"] and s["reused"] is False
+    [left] = s["left_out"]
+    assert left["product"] == "monolithic-comb"
+    assert left["misfit"].startswith("does not fit: height ") and "thickness_mm" in left["misfit"]
+    written = json.loads((tmp_path / "a" / "atlas.json").read_text(encoding="utf-8"))
+    assert written["left_out"] == s["left_out"]
+    # the same jaw in another file and folder: the kept table read back, its design
+    # commands naming the file this run was given
+    (tmp_path / "lab").mkdir()
+    (tmp_path / "lab" / "copy.toml").write_text(LAB_JAW_8MM, encoding="utf-8")
+    again = run_cli(*argv, "--jaw", "lab/copy.toml", "--out", "b", "--json", cwd=tmp_path)
+    assert again.returncode == 0, again.stdout + again.stderr
+    moved = json.loads(again.stdout)
+    assert moved["reused"] is True and moved["key"] == s["key"]
+    assert moved["jaw"] == "lab/copy.toml" and moved["left_out"] == s["left_out"]
+    rows = table(tmp_path / "b" / "atlas.parquet")
+    assert len(rows) == 2
+    assert all(shlex.split(r["command"])[shlex.split(r["command"]).index("--jaw") + 1]
+               == "lab/copy.toml" for r in rows)
+    text = run_cli(*argv, "--jaw", "lab/copy.toml", "--out", "b", cwd=tmp_path)
+    assert text.returncode == 0, text.stdout + text.stderr
+    assert f"not searched: monolithic-comb: {left['misfit']}" in text.stdout
+    assert "LABJAW" not in text.stdout
+
+
+def test_the_key_of_a_jaw_is_its_content_not_its_files_path(tmp_path, monkeypatch):
+    from tactcad.commands.atlas import atlas_key, jaw_atlas
+    from tactcad.studies.design_atlas import atlas_targets
+
+    here, far = tmp_path / "LABJAW.toml", tmp_path / "far" / "away" / "jaw.toml"
+    far.parent.mkdir(parents=True)
+    here.write_text(LAB_JAW_8MM, encoding="utf-8")
+    far.write_text(LAB_JAW_8MM, encoding="utf-8")
+    thicker = tmp_path / "thicker.toml"
+    thicker.write_text(LAB_JAW_8MM.replace("thickness_mm = 3.0", "thickness_mm = 3.2"),
+                       encoding="utf-8")
+    points = atlas_targets(4)
+    monkeypatch.chdir(tmp_path)
+
+    def key(jaw, pts=points):
+        return atlas_key(jaw_atlas(jaw, None, (2, 8)), pts)
+
+    assert key("LABJAW.toml") == key(str(here)) == key(str(far)) == key("far/away/jaw.toml")
+    assert key("thicker.toml") != key("LABJAW.toml")  # another jaw, another key
+    assert key("LABJAW.toml", atlas_targets(4, seed=1)) != key("LABJAW.toml")
+
+
+def test_a_die_projects_jaw_file_is_named_from_the_working_folder_not_absolute(
+        tmp_path, monkeypatch):
+    # the summary showed the die's jaw file as an absolute path
+    import shutil
+
+    from tactcad.commands.atlas import project_jaw
+    from tactcad.partlib.grasper_jaw import class_jaw_file_table
+
+    folder = tmp_path / "p5"
+    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
+    (folder / "jaw.toml").write_text("[grasper_jaw]\n" + "".join(
+        f"{k} = {json.dumps(v)}\n" for k, v in class_jaw_file_table("5").items()),
+        encoding="utf-8")
+    design = folder / "grasper_jaw_5mm_mems.toml"
+    text = design.read_text(encoding="utf-8")
+    design.write_text(re.sub(r'(?m)^jaw = "5"', 'jaw = "jaw.toml"', text), encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    assert project_jaw("p5/grasper_jaw_5mm_mems.toml")[0] == "p5/jaw.toml"
+    assert project_jaw(str(design))[0] == "p5/jaw.toml"
+    monkeypatch.chdir(folder)
+    assert project_jaw("grasper_jaw_5mm_mems.toml")[0] == "jaw.toml"

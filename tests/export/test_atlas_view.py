@@ -170,3 +170,18 @@ def test_the_page_draws_the_atlas_and_a_click_shows_the_point(exported, browser,
         page.locator("#atlas-plot path.refused").first.click()
         assert RECORDS[3]["command"] in page.locator("#atlas-picked").inner_text()
         assert page.errors == []
+
+
+def test_a_product_the_atlas_left_out_is_named_with_its_misfit_on_the_page(tmp_path):
+    # an 8 mm jaw's atlas judged the die alone and the page said nothing of the comb
+    misfit = "does not fit: height 5.79 mm vs the jaw's 3.3 mm (thickness_mm + tip_proud_mm)"
+    design = _project(tmp_path, summary={
+        "jaw": "lab.toml", "points": 4, "seed": 0, "complete": True,
+        "left_out": [{"product": "monolithic-comb", "misfit": misfit},
+                     {"product": 7, "misfit": None}]})  # an entry not in words: skipped
+    note = atlas_view(design)["note"]
+    assert f"Not searched: monolithic-comb: {misfit}." in note
+    assert note.count("Not searched") == 1
+    (tmp_path / "plain").mkdir()
+    plain = atlas_view(_project(tmp_path / "plain"))["note"]
+    assert "Not searched" not in plain

@@ -129,10 +129,20 @@ def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
     ``materials`` (default every library grade) unless it stands too tall or too wide for
     the pocket (:func:`comb_misfits`), the die unless its smallest build misfits.
 
+    Args:
+        jaw: ``--jaw``: a trocar class or a jaw file's path.
+        materials: the comb's grades (None: every grade of the library).
+        columns: (low, high) of ``--columns-range``.
+
+    Returns:
+        The jaw's atlas; its ``left_out`` names each product left out with its misfit in
+        words (as ``design --jaw`` says it: "does not fit: height 5.79 mm ...", mm).
+
     Raises:
         DesignError: ``--jaw`` unreadable, or no product fits it (each one's misfit named).
     """
     from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.commands.design import misfit_words
     from tactcad.design.array_plan import EXAMPLES, read_toml
     from tactcad.design.construction_registry import construction
     from tactcad.partlib.grasper_jaw import jaw_room
@@ -153,7 +163,10 @@ def jaw_atlas(jaw: str, materials: list[str] | None, columns: tuple[int, int]):
         words = "; ".join(m["words"] for m in comb_miss + die_miss if m.get("words"))
         raise DesignError("--jaw", jaw, "a jaw that holds a monolithic comb or a silicon die",
                           f"neither fits at {columns[0]} ... {columns[1]} columns: {words}")
-    return JawAtlas(jaw, room, None if comb_miss else base, array_envelope_mm, tuple(products))
+    left_out = tuple((product, misfit_words(missed))
+                     for product, missed in ((COMB, comb_miss), (DIE, die_miss)) if missed)
+    return JawAtlas(jaw, room, None if comb_miss else base, array_envelope_mm, tuple(products),
+                    left_out)
 
 
 def atlas_key(atlas, points: list[dict]) -> str:
@@ -165,14 +178,37 @@ def atlas_key(atlas, points: list[dict]) -> str:
 
     Returns:
         The key: those inputs with the tactcad version, the table's schema
-        (:data:`~tactcad.studies.atlas_files.ATLAS_SCHEMA`) and the store's code salt.
+        (:data:`~tactcad.studies.atlas_files.ATLAS_SCHEMA`) and the store's code salt. The
+        jaw counts by its content (its room and ``[grasper_jaw]`` table), not by the path
+        of the file that holds it: the same jaw in another file, or a project's design
+        stating it, has the same key (the records' design commands name the jaw of the
+        run that reads them: :func:`with_commands`).
     """
+    import dataclasses
+
     from tactcad.store import content_key
     from tactcad.studies.atlas_files import ATLAS_SCHEMA
     from tactcad.version import VERSION
 
-    return content_key("atlas", VERSION, ATLAS_SCHEMA, atlas.room, list(atlas.products),
-                       points)
+    room = dataclasses.replace(atlas.room, option="")  # the file's path: no part of the jaw
+    return content_key("atlas", VERSION, ATLAS_SCHEMA, room, list(atlas.products), points)
+
+
+def with_commands(records: list[dict], jaw: str) -> list[dict]:
+    """Records with each one's design command naming ``jaw``, the jaw of this run: a table
+    kept by a run of the same jaw under another path (:func:`atlas_key`) names that path.
+
+    Args:
+        records: rows of the atlas table. jaw: ``--jaw`` of this run.
+
+    Returns:
+        New rows, their ``command`` that of
+        :func:`~tactcad.studies.design_atlas.design_command`.
+    """
+    from tactcad.studies.design_atlas import design_command
+
+    return [{**r, "command": design_command(jaw, r["product"], r["material"], r)}
+            for r in records]
 
 
 def stored_table(store, key: str) -> Path | None:
@@ -245,12 +281,16 @@ def atlas_into(out: Path, atlas, points: list[dict], bounds: dict, jaw: str,
     key = atlas_key(atlas, points)
     kept = stored_table(store_from_args(args), key)
     inputs = {"jaw": jaw, "points": args.points, "seed": args.seed, "ranges": bounds,
-              "products": [list(p) for p in atlas.products], "key": key}
+              "products": [list(p) for p in atlas.products],
+              "left_out": [{"product": p, "misfit": words} for p, words in atlas.left_out],
+              "key": key}
     start = time.perf_counter()
     records = read_table(kept) if kept is not None and kept.is_file() else None
     reused, complete, resumed = records is not None, True, 0
     if records is None:
         records, complete, resumed = judged_on_top(atlas, points, args, kept, inputs)
+    if reused or resumed:  # kept by a run that may have named the same jaw otherwise
+        records = with_commands(records, atlas.jaw)
     seconds = time.perf_counter() - start
     kept_rows = printed_rows = records
     if args.project is not None:
@@ -391,8 +431,10 @@ def project_jaw(design: str) -> tuple[str, str]:
             trocar class, or a jaw file beside it).
 
     Returns:
-        (``--jaw``'s value: the trocar class, or the file holding the jaw's table; the
-        folder ``PROJECT_ATLAS_FOLDER`` beside the design file).
+        (``--jaw``'s value: the trocar class, or the file holding the jaw's table, named
+        as ``--project`` was or from the working folder, never as an absolute path where a
+        relative one leads there; the folder ``PROJECT_ATLAS_FOLDER`` beside the design
+        file).
 
     Raises:
         DesignError: naming ``--project``: no such file, not TOML, or a design with no jaw.
@@ -407,7 +449,9 @@ def project_jaw(design: str) -> tuple[str, str]:
     table = read_toml(path, "--project")
     folder = str(path.parent / PROJECT_ATLAS_FOLDER)
     if is_die_file(table):
-        return load_die_design(path).jaw, folder
+        jaw = load_die_design(path).jaw  # a jaw file's path resolved beside the design
+        return (jaw if not Path(jaw).is_absolute()
+                else named_from(Path(jaw), Path.cwd().resolve())), folder
     jaw = table.get("grasper_jaw")
     if isinstance(jaw, dict):
         return class_of_default_jaw(jaw) or str(path), folder
@@ -515,7 +559,9 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
         K_obj span; :func:`tactcad.studies.design_atlas.feasible_boundary`) and the Pareto
         front (:func:`tactcad.studies.design_atlas.pareto_front`, each point
         with its design command); the points judged per second; the files; the front
-        points' renamed keys, old -> new (``deprecated_keys``).
+        points' renamed keys, old -> new (``deprecated_keys``); each product left out of
+        the atlas, none of its points judged, with its misfit in the jaw in words
+        (``left_out``: ``product``, ``misfit``; mm).
     """
     from collections import Counter
 
@@ -539,7 +585,8 @@ def atlas_summary(records: list[dict], inputs: dict, seconds: float, reused: boo
                                   "largest_feasible_force_N": force}
                                  for lo, hi, force in feasible_boundary(rows)]})
     return {"jaw": inputs["jaw"], "points": inputs["points"], "seed": inputs["seed"],
-            "ranges": inputs["ranges"], "records": len(records), "complete": complete,
+            "ranges": inputs["ranges"], "left_out": list(inputs.get("left_out", [])),
+            "records": len(records), "complete": complete,
             "reused": reused, "seconds": round(seconds, 3),
             "resumed_points": resumed,
             "points_per_s": (None if reused or seconds <= 0 else
@@ -709,5 +756,7 @@ def print_summary(s: dict) -> None:
             print(f"    front: {f['full_scale_force_N']:g} N, K_obj {f['kobj_lo_N_per_mm']:g}-"
                   f"{f['kobj_hi_N_per_mm']:g} N/mm, resolution "
                   f"{100 * f['kobj_resolution_rel']:.2g} %: {f['command']}")
+    for g in s.get("left_out", []):
+        print(f"  not searched: {g['product']}: {g['misfit']}")
     for name, path in s["files"].items():
         print(f"  wrote {name}: {path}")

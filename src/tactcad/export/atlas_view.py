@@ -201,12 +201,32 @@ def _view(records: list[dict], summary: dict) -> dict:
             "its figures or the limit that refused it; click it to copy its design command, "
             "to paste in the project's folder."
             + ("" if summary.get("complete", True) else
-               " The run was stopped: only the points that finished are shown."))
+               " The run was stopped: only the points that finished are shown.")
+            + "".join(f" Not searched: {product}: {misfit}." for product, misfit
+                      in left_out_of(summary)))
     columns = [heading for _, heading in FRONT_COLUMNS]
     return {"title": title, "note": note, "groups": groups, "points": drawn,
             "front": {"title": "Pareto front (rated force, K_obj span and K_obj resolution; "
                                "none beaten in all three) per product and material",
                       "columns": columns, "rows": front_rows}}
+
+
+def left_out_of(summary: dict) -> list[tuple[str, str]]:
+    """The products an atlas left out, as its summary names them (``left_out``).
+
+    Args:
+        summary: the atlas's ``atlas.json`` as read.
+
+    Returns:
+        (product, its misfit in the jaw in words, mm) of each; entries that are not a
+        product and its words (a summary edited or written by another version) are
+        skipped.
+    """
+    found = summary.get("left_out")
+    if not isinstance(found, list):
+        return []
+    return [(g["product"], g["misfit"]) for g in found if isinstance(g, dict)
+            and isinstance(g.get("product"), str) and isinstance(g.get("misfit"), str)]
 
 
 def _front_row(r: dict) -> dict:

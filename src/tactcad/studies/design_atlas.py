@@ -213,6 +213,9 @@ class JawAtlas:
             None when no comb seats in the jaw.
         envelope_of: plan -> its footprint envelope (mm; the array's inventory).
         products: (product, material) pairs judged at each point.
+        left_out: (product, its misfit in words: "does not fit: ...") of each product
+            that does not seat in the jaw at any count of the columns asked for, so it
+            is judged at no point.
     """
 
     jaw: str
@@ -220,6 +223,7 @@ class JawAtlas:
     comb_base: dict | None
     envelope_of: Callable | None
     products: tuple[tuple[str, str], ...] = field(default=())
+    left_out: tuple[tuple[str, str], ...] = field(default=())
 
 
 def tissue_default():
