@@ -218,6 +218,51 @@ def test_a_jaw_too_small_for_any_comb_names_the_sizes_that_bind_and_the_jaw_that
     assert not list(tmp_path.iterdir())
 
 
+#: a lab's 8 mm grasper whose jaw (3 mm, beside a 3 mm opposing jaw) holds no comb: no
+#: thicker jaw of the 8 mm shaft passes it closed at any width
+PALP8_JAW = ("[grasper_jaw]\nshaft_diameter_mm = 8.0\nwidth_mm = 4.8\nlength_mm = 20.0\n"
+             "thickness_mm = 3.0\nopposing_jaw_mm = 3.0\npin_diameter_mm = 1.5\n"
+             "pin_inset_mm = 1.3\nopening_angle_deg = 40.0\npocket_depth_mm = 1.0\n")
+
+
+def test_a_comb_asked_by_name_in_a_jaw_too_small_is_refused_for_its_size(tmp_path):
+    """``--construction monolithic-comb`` is screened against the jaw as auto is: its refusal
+    names --jaw, the height limit and the class's jaw that holds it, not a sheet's arm for
+    --full-scale-force; the lab's file gets no key that would pass no 8 mm shaft, but the
+    shaft it needs."""
+    from tactcad.vocabulary.binding_limits import HEIGHT
+
+    jaw = tmp_path / "palp8_jaw.toml"
+    jaw.write_text(PALP8_JAW, encoding="utf-8")
+    r = run_cli("design", "--jaw", str(jaw), "--construction", "monolithic-comb",
+                "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--full-scale-force", "0.01",
+                "--columns", "4", "--material", "Ti-6Al-4V-annealed", "--out",
+                str(tmp_path / "comb8"), "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert (error["field"], error["value"], error["limit"]) == ("--jaw", str(jaw), HEIGHT)
+    assert "height 5.79 mm" in error["message"] and "vs the jaw's 3.3 mm" in error["message"]
+    assert "width 4.2 mm" in error["message"] and "pocket's 3.6 mm" in error["message"]
+    assert "a shaft of at least" in error["message"]
+    assert [a["option"] for a in error["alternatives"]] == ["--jaw 10"]
+    assert not (tmp_path / "comb8").exists()
+
+
+def test_a_jaw_files_paste_is_never_a_jaw_its_shaft_refuses(tmp_path):
+    """The lab's 8 mm jaw once got ``thickness_mm = 5.5 and width_mm = 0`` to paste; every
+    key it is offered now reads back through the jaw's own rules."""
+    jaw = tmp_path / "palp8_jaw.toml"
+    jaw.write_text(PALP8_JAW, encoding="utf-8")
+    r = run_cli("design", "--jaw", str(jaw), "--kr-over-km", "10", "--kobj-range", "0.5", "5",
+                "--full-scale-force", "0.5", "--columns", "4", "--out", str(tmp_path / "hi"),
+                "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert not [a for a in error["alternatives"] if "grasper_jaw." in a["option"]], error
+    assert "no jaw of the 8 mm shaft holds it" in error["message"]
+    assert "--jaw 10" in [a["option"] for a in error["alternatives"]]
+
+
 @pytest.mark.slow  # a whole comb search through the command line
 def test_a_jaw_file_of_any_name_is_read_as_toml(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "our_jaw.cfg", "pocket_width_mm = 5.0\n")

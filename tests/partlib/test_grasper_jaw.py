@@ -146,6 +146,83 @@ def test_the_smallest_comb_is_screened_against_the_jaw_naming_the_size_that_bind
     missed = comb_misfit(jaw_room(thin, "robot.toml"), 6, base, targets)
     assert missed[0]["words"].startswith("height 5.79 mm") and "2.9 mm" in missed[0]["words"]
     assert "thickness_mm" in missed[0]["words"]
-    assert "grasper_jaw.thickness_mm = " in missed[0]["option"]
+    # a jaw thick enough passes the 8 mm shaft beside the 2.6 mm opposing jaw at no width:
+    # nothing to paste in robot.toml, the shaft it needs said instead
+    assert missed[0]["option"] == "" and "a shaft of at least" in missed[0]["words"]
     seven = comb_misfit(jaw_room("10"), 7, base, targets)  # 7 x 4.3 mm > the 29.3 mm pocket
     assert [m["option"] for m in seven] == ["--columns 6"]
+
+
+#: Lab jaw files (a ``[grasper_jaw]`` each) too low or too narrow for the 10 mm comb: an
+#: 8 mm shaft whose thicker jaw passes it at no width, one that passes narrowed, a stated
+#: pocket too narrow, a width stated as a clearance, a tiny stated pocket depth
+PASTE_JAWS = {
+    "palp8": {"shaft_diameter_mm": 8.0, "width_mm": 4.8, "length_mm": 40.0,
+              "thickness_mm": 3.0, "opposing_jaw_mm": 3.0, "pin_diameter_mm": 1.5,
+              "pin_inset_mm": 1.3, "opening_angle_deg": 40.0, "pocket_depth_mm": 1.0},
+    "lab12": {"shaft_diameter_mm": 12.0, "width_mm": 11.0, "length_mm": 40.0,
+              "thickness_mm": 3.2, "pin_inset_mm": -6.0, "opening_angle_deg": 45.0,
+              "pocket_width_mm": 7.0},
+    "narrow_pocket": {"shaft_class_mm": "10", "width_clearance_mm": 3.5, "length_mm": 40.0,
+                      "thickness_mm": 5.6, "pin_inset_mm": 2.5, "opening_angle_deg": 30.0,
+                      "pocket_width_mm": 0.5},
+    "clearance_low": {"shaft_diameter_mm": 11.0, "width_clearance_mm": 1.5, "length_mm": 40.0,
+                      "thickness_mm": 3.0, "pin_inset_mm": 2.5, "opening_angle_deg": 30.0},
+    "tiny_depth": {"shaft_diameter_mm": 12.0, "width_mm": 8.0, "length_mm": 40.0,
+                   "thickness_mm": 3.0, "pin_inset_mm": 2.5, "opening_angle_deg": 30.0,
+                   "pocket_depth_mm": 0.05},
+    "tiny_depth_tight": {"shaft_diameter_mm": 10.0, "width_mm": 8.0, "length_mm": 40.0,
+                         "thickness_mm": 2.0, "opposing_jaw_mm": 1.0, "pin_inset_mm": 2.5,
+                         "opening_angle_deg": 30.0, "pocket_depth_mm": 0.05},
+}
+
+
+def _pasted(table: dict, keys: list) -> dict:
+    """The jaw file's table with each ``grasper_jaw.key = value`` of ``keys`` written in."""
+    out = dict(table)
+    for key, _ in keys:
+        name, value = key.removeprefix("grasper_jaw.").split(" = ")
+        out[name] = float(value)
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(PASTE_JAWS))
+def test_every_jaw_file_paste_is_a_jaw_the_load_accepts_and_that_holds_the_insert(
+        comb_plan, name):
+    """A paste is the file with its keys written in, read back through the jaw's own rules
+    (the --jaw FILE read: each key's range, the pivot, the depth, the closed jaws in the
+    shaft) and through the load's (the jaw for the insert); where none would pass, no key
+    is offered and the reason says why."""
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    table = PASTE_JAWS[name]
+    env = insert_envelope_mm(comb_plan)
+    room = jaw_room(table, f"{name}.toml")
+    assert env[2] > room.height_mm or env[0] > room.across_mm  # the file does not hold it
+    keys = room.file_keys_to_hold(env)
+    if not keys:
+        why_not = room.file_paste(env)[1]
+        assert "a shaft of at least" in why_not or "refused" in why_not, why_not
+        return
+    pasted = _pasted(table, keys)
+    again = jaw_room(pasted, f"{name}.toml")  # raises on any key the jaw's rules refuse
+    assert again.height_mm >= env[2] - 1e-9 and again.across_mm >= env[0] - 1e-9
+    jaw_part(comb_plan, pasted)  # the load's rules for the insert in this jaw
+    assert again.file_keys_to_hold(env) == []  # nothing more to paste
+
+
+def test_a_shaft_no_jaw_width_passes_gets_no_paste_but_the_shaft_it_needs(comb_plan):
+    """The 8 mm shaft with a 3 mm opposing jaw: a jaw thick enough for the comb passes it at
+    no width (it once pasted width_mm = 0, outside the key's 1 ... 20 mm)."""
+    import math
+
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    env = insert_envelope_mm(comb_plan)
+    room = jaw_room(PASTE_JAWS["palp8"], "palp8_jaw.toml")
+    keys, why_not = room.file_paste(env)
+    assert keys == []
+    shaft = float(why_not.split("shaft of at least ")[1].split(" mm")[0])
+    thick = 3.0 + env[2] - room.height_mm
+    assert shaft >= math.hypot(env[0] + 2 * (0.1 + 0.5), thick + 3.0) - 0.01
+    assert "8 mm shaft" in why_not and "opposing_jaw_mm" in why_not

@@ -1174,7 +1174,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     misfits = []  # (product, its misfits): not searched, each dimension that binds said
     for c in chosen:
         base = read_toml(EXAMPLES / c.jaw_template, "design file")
-        screen = c.jaw_screen() if args.construction == "auto" else None
+        screen = c.jaw_screen()  # asked by name too: a product the jaw cannot hold is said so
         missed = screen(room, args.columns or 6, base, targets, args.material,
                         args.process) if screen else []
         if missed:

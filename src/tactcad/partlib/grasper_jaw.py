@@ -513,44 +513,93 @@ class JawRoom:
     def file_keys_to_hold(self, env: tuple[float, float, float]) -> list[tuple[str, str]]:
         """The ``[grasper_jaw]`` settings (``key = value`` to write in a lab's own jaw file,
         with why) that make its pocket hold an insert of envelope ``env`` (across, along,
-        height; mm): a thicker jaw (and the width that still passes the shaft closed) and a
-        wider pocket; none for a class's default jaw (no file to edit)."""
+        height; mm): :meth:`file_paste`'s keys (none where no jaw of its shaft holds it)."""
+        return self.file_paste(env)[0]
+
+    def file_paste(self, env: tuple[float, float, float]) -> tuple[list[tuple[str, str]], str]:
+        """The ``[grasper_jaw]`` settings that make a lab's own jaw hold an insert of
+        envelope ``env``: a thicker jaw (and its pocket depth, where the file states one),
+        the width that still passes the shaft closed and holds the pocket with its side
+        walls, a wider pocket. Every paste is the jaw file with those keys read back through
+        the jaw's own rules (:func:`jaw_room`: each key's range, the pivot, the depth, the
+        closed jaws inside the shaft) and its room holding the insert; none is offered
+        otherwise.
+
+        Args:
+            env: the insert's envelope (across its rows, along, height; mm).
+
+        Returns:
+            (the settings: ``("grasper_jaw.key = value", why)`` each, mm; why there are none
+            where a jaw of this shaft would hold the insert but none of its keys does, e.g.
+            "needs a shaft of at least 10.08 mm", else ""). Both empty for a class's default
+            jaw (no file to edit) or a room that already holds ``env``.
+        """
+        from tactcad.errors import DesignErrors
+
         if not self.option or self.option in SHAFT_CLASSES_MM:
-            return []
-        j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection,
-                                                self.table or {}))
-        keys = []
+            return [], ""
+        table = dict(self.table or {})
+        j = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection, table))
+        bore, c = bore_mm(j), self.clearance_mm
+        update: dict[str, float] = {}
+        why: dict[str, str] = {}
+        thick = j.thickness_mm
         if env[2] > self.height_mm + 1e-9:
-            need = math.ceil((j.thickness_mm + env[2] - self.height_mm) * 100) / 100
-            keys.append((f"grasper_jaw.thickness_mm = {need:g}",
-                         f"the insert stands {env[2]:.4g} mm high; the jaw's thickness and the "
-                         f"tips' proud height hold {self.height_mm:.4g} mm"))
-            closed = need + j.opposing_jaw_mm
-            if math.hypot(jaw_width_mm(j), closed) > bore_mm(j):  # the thicker jaw's width
-                widest = math.floor(math.sqrt(max(bore_mm(j) ** 2 - closed ** 2, 0.0)) * 100) / 100
-                roomy = widest >= env[0] + 2 * (self.clearance_mm + MIN_WALL_MM)
-                keys.append((f"grasper_jaw.width_mm = {widest:g}",
-                             f"the closed jaws ({need:g} + {j.opposing_jaw_mm:g} mm) pass the "
-                             f"{bore_mm(j):g} mm shaft" + ("" if roomy else "; too narrow for "
-                                                           "the insert and its side walls: a "
-                                                           "larger shaft")))
-        wide = math.ceil((env[0] + 2 * (self.clearance_mm + MIN_WALL_MM)) * 100) / 100
-        if env[0] > self.across_mm + 1e-9 and jaw_width_mm(j) < wide - 1e-9 \
-                and not any(k.startswith("grasper_jaw.width_mm") for k, _ in keys):
-            thick = j.thickness_mm if env[2] <= self.height_mm + 1e-9 else \
-                math.ceil((j.thickness_mm + env[2] - self.height_mm) * 100) / 100
-            fits = math.hypot(wide, thick + j.opposing_jaw_mm) <= bore_mm(j) + 1e-9
-            keys.append((f"grasper_jaw.width_mm = {wide:g}",
-                         f"the pocket and its {MIN_WALL_MM:g} mm side walls"
-                         + ("" if fits else f"; the closed jaws then pass no "
-                            f"{bore_mm(j):g} mm shaft: a larger shaft")))
-        widened = any(k.startswith("grasper_jaw.width_mm") for k, _ in keys)
-        if env[0] > self.across_mm + 1e-9 and (j.pocket_width_mm is not None or not widened):
-            need = math.ceil((env[0] + 2 * self.clearance_mm) * 100) / 100
-            keys.append((f"grasper_jaw.pocket_width_mm = {need:g}",
-                         f"the insert is {env[0]:.4g} mm across its rows, with the pocket's "
-                         f"{self.clearance_mm:g} mm clearance each side"))
-        return keys
+            thick = math.ceil((j.thickness_mm + env[2] - self.height_mm) * 100) / 100
+            update["thickness_mm"] = thick
+            why["thickness_mm"] = (f"the insert stands {env[2]:.4g} mm high; the jaw's thickness "
+                                   f"and the tips' proud height hold {self.height_mm:.4g} mm")
+            if j.pocket_depth_mm is not None:  # the comb's pocket from the back, its face wall kept
+                update["pocket_depth_mm"] = round(thick - j.face_wall_mm, 2)
+                why["pocket_depth_mm"] = (f"the pocket from the back of the {thick:g} mm jaw, "
+                                          f"leaving the {j.face_wall_mm:g} mm face wall")
+        pocket_w = j.pocket_width_mm
+        if env[0] > self.across_mm + 1e-9 and (pocket_w is not None or self.outline is None):
+            pocket_w = math.ceil((env[0] + 2 * c) * 100) / 100
+            if j.pocket_width_mm is not None or jaw_width_mm(j) >= pocket_w + 2 * MIN_WALL_MM:
+                update["pocket_width_mm"] = pocket_w
+                why["pocket_width_mm"] = (f"the insert is {env[0]:.4g} mm across its rows, with "
+                                          f"the pocket's {c:g} mm clearance each side")
+        held = pocket_w if pocket_w is not None else env[0] + 2 * c
+        least_w = math.ceil(round((held + 2 * MIN_WALL_MM) * 100, 6)) / 100
+        closed = thick + j.opposing_jaw_mm
+        widest = math.floor(closed_thickness_limit_mm(bore, closed) * 100) / 100 \
+            if closed < bore else 0.0
+        if widest < least_w - 1e-9:  # no width of this shaft holds the pocket closed
+            shaft = math.ceil(round(math.hypot(least_w, closed) * 100, 6)) / 100
+            return [], (f"no jaw of the {bore:g} mm shaft holds it: the closed jaws ({thick:g} "
+                        f"mm (thickness_mm) + {j.opposing_jaw_mm:g} mm (opposing_jaw_mm) thick, "
+                        f"at least {least_w:g} mm wide for the {held:.4g} mm pocket and its "
+                        f"{MIN_WALL_MM:g} mm side walls) need a shaft of at least {shaft:g} mm "
+                        "(shaft_diameter_mm)")
+        width = jaw_width_mm(j)
+        new_w = widest if width > widest + 1e-9 else least_w if width < least_w - 1e-9 else width
+        if new_w != width:
+            words = (f"the closed jaws ({thick:g} + {j.opposing_jaw_mm:g} mm) pass the {bore:g} "
+                     "mm shaft" if new_w < width else
+                     f"the pocket and its {MIN_WALL_MM:g} mm side walls")
+            if j.width_mm is None:  # the file states the width as a clearance below the shaft
+                update["width_clearance_mm"] = round(bore - new_w, 2)
+                why["width_clearance_mm"] = words
+            else:
+                update["width_mm"] = new_w
+                why["width_mm"] = words
+        if not update:
+            return [], ""
+        try:
+            room = jaw_room({**table, **update}, self.option)
+        except DesignErrors as exc:
+            return [], ("no keys of this jaw file hold it: the jaw they make is refused ("
+                        + "; ".join(f"{e.field} = {e.value}: allowed {e.allowed}"
+                                    for e in exc.errors) + ")")
+        if room.height_mm < env[2] - 1e-9 or room.along_for(env[0]) <= 0:
+            return [], ("no keys of this jaw file hold it: its pocket "
+                        + ("(pocket_outline_mm) " if self.outline else "")
+                        + f"then holds {room.across_mm:.4g} mm across and {room.height_mm:.4g} "
+                        f"mm high, the insert {env[0]:.4g} x {env[2]:.4g} mm")
+        order = ("thickness_mm", "pocket_depth_mm", "width_mm", "width_clearance_mm",
+                 "pocket_width_mm")
+        return [(f"grasper_jaw.{k} = {update[k]:g}", why[k]) for k in order if k in update], ""
 
     @property
     def label(self) -> str:

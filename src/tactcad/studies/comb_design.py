@@ -2129,21 +2129,24 @@ def comb_misfit(room: Any, columns: int, base: Mapping[str, Any], targets: Targe
     sheet, env, misses, pitch = smallest
     out = []
     keys = room_keys(room)
-    edit = room.file_keys_to_hold(env)  # a lab's own jaw: the keys that would hold it
+    edit, why_not = room.file_paste(env)  # a lab's own jaw: the keys that would hold it
     paste = (f"{' and '.join(k for k, _ in edit)} in {PurePath(room.option).name}"
              if edit and ("height" in misses or "across" in misses) else "")
+    # where no key of the file holds it, why (said once, on the first size that binds)
+    why_not = f"; {why_not}" if why_not and ("height" in misses or "across" in misses) else ""
     for dim in misses:
         if dim == "height":
             out.append({"words": f"height {env[2]:.3g} mm (the {sheet:g} mm sheet's comb, "
                                  f"its rows on edge) vs the jaw's {room.height_mm:.3g} mm "
-                                 f"({keys['height']})", "option": paste, "limit": HEIGHT})
-            paste = ""
+                                 f"({keys['height']}){why_not}", "option": paste,
+                        "limit": HEIGHT})
+            paste = why_not = ""
         elif dim == "across":
             out.append({"words": f"width {env[0]:.3g} mm across its two rows (the {sheet:g} "
                                  f"mm sheet's) vs the pocket's {room.across_mm:.3g} mm "
-                                 f"({keys['across']})", "option": paste,
+                                 f"({keys['across']}){why_not}", "option": paste,
                         "limit": FOOTPRINT})
-            paste = ""
+            paste = why_not = ""
         else:
             fit = next((n for n in range(columns - 1, 0, -1)
                         if pocket_for_length_mm(tables, n * pitch) <= room.along_mm + 1e-9), 0)
@@ -2209,13 +2212,14 @@ def nearest_jaw(base: dict, columns: int, room: Any, targets: Targets, grade: st
     holds = [option for option, other in other_rooms.items()
              if other.across_mm >= env[0] and other.height_mm >= env[2]
              and other.along_mm >= env[1]]
-    keys = room.file_keys_to_hold(env)
+    keys, why_not = room.file_paste(env)
     edit = [f"{' and '.join(k for k, _ in keys)} in {PurePath(room.option).name}"] if keys else []
     alternatives = [{"option": e, "words": "; ".join(w for _, w in keys)} for e in edit]
     alternatives += [{"option": f"--jaw {h}", "words": f"the {h} mm class's default jaw holds "
                       f"the {sheet:g} mm sheet's comb"} for h in holds[:1]]
     where = " or ".join(edit + [f"--jaw {h}" for h in holds[:1]]) \
         or "a jaw whose [grasper_jaw] pocket holds it"
+    where += f" ({why_not})" if why_not else ""
     return (f"nearest jaw: a pocket of {env[0]:.3g} mm across and {env[2]:.3g} mm high inside "
             f"its clearances (the {sheet:g} mm sheet's comb, the smallest; this jaw's is "
             f"{room.across_mm:.3g} x {room.height_mm:.3g} mm): {where}", alternatives)
