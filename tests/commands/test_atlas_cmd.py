@@ -98,6 +98,24 @@ def test_bad_atlas_options_are_refused_without_a_traceback(tmp_path, argv, field
 EXAMPLES = Path(tactcad.__file__).parent / "examples"
 
 
+def die_project_with_jaw_file(tmp_path: Path) -> Path:
+    """The 5 mm die example copied to ``tmp_path/p5`` with its jaw as a file beside it
+    (``jaw.toml``, the 5 mm class's table): the design file's path."""
+    import shutil
+
+    from tactcad.partlib.grasper_jaw import class_jaw_file_table
+
+    folder = tmp_path / "p5"
+    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
+    (folder / "jaw.toml").write_text("[grasper_jaw]\n" + "".join(
+        f"{k} = {json.dumps(v)}\n" for k, v in class_jaw_file_table("5").items()),
+        encoding="utf-8")
+    design = folder / "grasper_jaw_5mm_mems.toml"
+    text = design.read_text(encoding="utf-8")
+    design.write_text(re.sub(r'(?m)^jaw = "5"', 'jaw = "jaw.toml"', text), encoding="utf-8")
+    return design
+
+
 @pytest.mark.parametrize("project, why", [
     ("macro_array/macro_array.toml", "names no grasper jaw"),
     ("no_such_design.toml", "no such file"),
@@ -434,20 +452,10 @@ def test_a_projects_front_commands_pasted_where_the_atlas_ran_leave_it_one_desig
     which only worked from inside ojp/: pasted where the atlas ran it was refused. The
     printed commands are named from there; the review page's (the table in the project)
     from the project's folder."""
-    import shutil
-
     from tactcad.studies.atlas_files import read_table
 
-    folder = tmp_path / "p5"
-    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
-    from tactcad.partlib.grasper_jaw import class_jaw_file_table
-
-    (folder / "jaw.toml").write_text("[grasper_jaw]\n" + "".join(
-        f"{k} = {json.dumps(v)}\n" for k, v in class_jaw_file_table("5").items()),
-        encoding="utf-8")
-    design = folder / "grasper_jaw_5mm_mems.toml"
-    text = design.read_text(encoding="utf-8")
-    design.write_text(re.sub(r'(?m)^jaw = "5"', 'jaw = "jaw.toml"', text), encoding="utf-8")
+    design = die_project_with_jaw_file(tmp_path)
+    folder = design.parent
     argv = ["atlas", "--project", "p5/grasper_jaw_5mm_mems.toml", "--points", "4",
             "--force-range", "0.002", "0.02", "--workers", "1", "--no-cache"]
     r = run_cli(*argv, "--json", cwd=tmp_path)
@@ -757,19 +765,10 @@ def test_the_key_of_a_jaw_is_its_content_not_its_files_path(tmp_path, monkeypatc
 def test_a_die_projects_jaw_file_is_named_from_the_working_folder_not_absolute(
         tmp_path, monkeypatch):
     # the summary showed the die's jaw file as an absolute path
-    import shutil
-
     from tactcad.commands.atlas import project_jaw
-    from tactcad.partlib.grasper_jaw import class_jaw_file_table
 
-    folder = tmp_path / "p5"
-    shutil.copytree(EXAMPLES / "grasper_jaw_5mm_mems", folder)
-    (folder / "jaw.toml").write_text("[grasper_jaw]\n" + "".join(
-        f"{k} = {json.dumps(v)}\n" for k, v in class_jaw_file_table("5").items()),
-        encoding="utf-8")
-    design = folder / "grasper_jaw_5mm_mems.toml"
-    text = design.read_text(encoding="utf-8")
-    design.write_text(re.sub(r'(?m)^jaw = "5"', 'jaw = "jaw.toml"', text), encoding="utf-8")
+    design = die_project_with_jaw_file(tmp_path)
+    folder = design.parent
     monkeypatch.chdir(tmp_path)
     assert project_jaw("p5/grasper_jaw_5mm_mems.toml")[0] == "p5/jaw.toml"
     assert project_jaw(str(design))[0] == "p5/jaw.toml"
