@@ -259,3 +259,97 @@ def test_verify_prints_and_writes_the_most_accurate_levels_record(monkeypatch, c
     listed = next(line for line in text.splitlines()
                   if line.strip().startswith(f"{requirement}: undecided; shown at {best}"))
     assert all(f"{level} UNDECIDED" in listed for level in others)
+
+
+def _stress_asked(monkeypatch, by_level):
+    """verification_auto over the ladder with each level's matrix given, a stress function
+    handed in: per level the stress function its matrix got and whether its top level's
+    peak stresses were prefetched."""
+    from tactcad.studies import verification as v
+
+    asked = {}
+    monkeypatch.setattr(v, "prefetch_top_level",
+                        lambda plan, level, progress, peak_stress=False:
+                        asked.setdefault(level, {}).update(prefetched_stress=peak_stress) or 0)
+
+    def matrix(plan, level, progress, req, stress, envelope):
+        asked.setdefault(level, {}).update(stress=stress)
+        return [dict(r) for r in by_level[level]]
+
+    monkeypatch.setattr(v, "verification_matrix", matrix)
+    v.verification_auto(object(), requirements=object(), stress=v.verification_matrix,
+                        levels=LADDER)
+    return asked
+
+
+def test_a_level_only_k_r_over_k_m_climbs_to_solves_no_peak_stress(monkeypatch):
+    # K_r/K_m (with the grid's power density, undecided at every level) is all the closed
+    # form leaves open: fem2d and fem3d solve K, no peak-stress sequence
+    from tactcad.studies import verification as v
+
+    rows = {level: [_row(level, "undecided" if level != "fem3d" else "pass", 0.005, 0.18,
+                         "kr_over_km"),
+                    _row(level, "pass", 0.3, 0.02, "full_scale_force_N"),
+                    {**_row(level, "undecided", 0.0, None, v.GRID_POWER_REQUIREMENT),
+                     "level_fixed": True}]
+            for level in LADDER}
+    asked = _stress_asked(monkeypatch, rows)
+    assert asked["closed-form"]["stress"] is v.verification_matrix  # the caller's, as given
+    for level in LADDER[1:]:
+        assert asked[level]["stress"] is v.unread_stress, level
+        assert asked[level]["prefetched_stress"] is False, level
+
+
+def test_a_level_an_open_full_scale_force_climbs_to_solves_its_peak_stress(monkeypatch):
+    from tactcad.studies import verification as v
+
+    rows = {level: [_row(level, "pass", 0.3, 0.02, "kr_over_km"),
+                    _row(level, "undecided" if level != "fem3d" else "pass", 0.03, 0.13,
+                         "full_scale_force_N")]
+            for level in LADDER}
+    asked = _stress_asked(monkeypatch, rows)
+    for level in LADDER:
+        assert asked[level]["stress"] is v.verification_matrix, level
+        assert asked[level]["prefetched_stress"] is True, level
+
+
+@pytest.mark.slow  # fem2d solves of four elements
+def test_k_r_over_k_m_climbing_alone_gives_the_records_the_full_matrix_gives(tmp_path,
+                                                                             monkeypatch):
+    # a random design of the domain whose closed form leaves K_r/K_m alone open (seed 2002 of
+    # test_random_designs): the records with no peak stress solved above the closed form
+    # are those every level's full matrix gives, and no FEM stress was asked for
+    import json
+    import random
+
+    import tomli_w
+
+    from tactcad.api import load
+    from tactcad.design.domain import draw_design
+    from tactcad.studies import verification as v
+    from tactcad.studies.strength_studies import element_stress
+
+    rng = random.Random(2002)
+    data = draw_design(rng.uniform, rng.choice, name="domain2002")
+    for section in ("files", "requirements"):
+        data.pop(section, None)
+    design = tmp_path / "domain2002.toml"
+    design.write_text(tomli_w.dumps(data), encoding="utf-8")
+    plan = load(str(design)).plan
+    levels = ("closed-form", "beam", "fem2d")
+    closed = v.verification_matrix(plan, "closed-form", stress=element_stress)
+    assert {r["requirement"] for r in closed if r["verdict"] == "undecided"
+            and not r["level_fixed"]} == {"kr_over_km"}
+    asked = []
+
+    def stress(g, material, model):
+        asked.append(model)
+        return element_stress(g, material, model)
+
+    records, _ = v.verification_auto(plan, stress=stress, levels=levels)
+    assert set(asked) == {"closed-form"}, asked
+    monkeypatch.setattr(v, "reads_k_alone", lambda open_requirements: False)  # every stress
+    full, _ = v.verification_auto(plan, stress=stress, levels=levels)
+    assert "fem2d" in asked
+    assert json.dumps(records, sort_keys=True, default=str) == \
+        json.dumps(full, sort_keys=True, default=str)

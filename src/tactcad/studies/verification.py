@@ -43,7 +43,7 @@ import numpy as np
 
 from tactcad.store import kept_per_process
 from tactcad.vocabulary.rounding import clean as _clean, round_down, round_up
-from tactcad.design.array_plan import Plan
+from tactcad.design.array_plan import ElementGeometry, Material, Plan
 from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper,
                                                  derived_requirements, requirements_source,
                                                  stated_footprint, stated_number,
@@ -1262,6 +1262,11 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     :func:`ladder_undecided`: its figures and its ``model``), every other level tried
     listed beside it (``less_accurate_levels``), whichever level the ladder stopped at.
 
+    A level above the first whose open requirements all read K alone (:func:`reads_k_alone`:
+    K_r/K_m, the K band, the footprint, the grid's power density) solves no peak stress
+    (:func:`unread_stress` stands for ``stress``): what reads one was decided below it, so the
+    records returned are those the full matrix of every level gives.
+
     Args:
         stress: as :func:`verification_matrix` (needed once a FEM level runs).
         levels: the ladder to climb; default every level, cheapest first.
@@ -1286,8 +1291,12 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     for i, level in enumerate(ladder):
         open_before = [k for k in order if k not in chosen] if order else None
         t0 = time.perf_counter()
-        prefetch_top_level(plan, level, progress, peak_stress=stress is not None)
-        records = verification_matrix(plan, level, progress, req, stress, envelope_mm)
+        # a level whose open requirements read K alone solves no peak stress: the records
+        # that read one were decided below it, and its own are not kept
+        read = stress if stress is None or not reads_k_alone(open_before) else unread_stress
+        prefetch_top_level(plan, level, progress,
+                           peak_stress=stress is not None and read is stress)
+        records = verification_matrix(plan, level, progress, req, read, envelope_mm)
         spent.append({"model": level, "seconds": time.perf_counter() - t0,
                       "undecided_before": open_before})
         order = order or [r["requirement"] for r in records]
@@ -1319,6 +1328,48 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
         if len(chosen) == len(order):
             break
     return [chosen[k] for k in order], spent
+
+
+#: Requirements whose record at a level reads no stress of that level: K_r/K_m (the rows'
+#: K alone) and those computed alike at every level without the elements' figures.
+K_ALONE = ("kr_over_km", "k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
+           GRID_POWER_REQUIREMENT)
+
+
+def reads_k_alone(open_requirements: Sequence[str] | None) -> bool:
+    """Whether every requirement still open reads no stress of the next level (all in
+    :data:`K_ALONE`), so :func:`verification_auto` solves that level's K and no peak stress.
+
+    Args:
+        open_requirements: the requirements no lower level decided; None before the first
+            level (nothing decided yet: every requirement is open).
+
+    Returns:
+        True when none of them reads a stress (False for None).
+    """
+    return open_requirements is not None and all(k in K_ALONE for k in open_requirements)
+
+
+def unread_stress(g: ElementGeometry, material: Material, model: str) -> Any:
+    """The stress :func:`verification_auto` hands a level whose stresses no open requirement
+    reads (:func:`reads_k_alone`): the closed form's formula on the level's K
+    (:func:`tactcad.mechanics.element_strength.closed_form_stress`), so no peak-stress
+    sequence is solved; the records made from it were decided below and are not kept, so
+    its warnings (a K_t fit range) are not said.
+
+    Args:
+        g: the element (mm). material: its material. model: the level (its K is read).
+
+    Returns:
+        The :class:`~tactcad.mechanics.element_strength.ElementStress`.
+    """
+    import warnings
+
+    from tactcad.mechanics.element_strength import closed_form_stress
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return closed_form_stress(g, material, model)
 
 
 def less_accurate(record: dict, than: dict) -> bool:
