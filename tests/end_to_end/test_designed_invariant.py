@@ -15,7 +15,7 @@ import os
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, Phase, given, seed, settings
+from hypothesis import HealthCheck, Phase, assume, given, seed, settings
 from hypothesis import strategies as st
 
 from depth import draws
@@ -132,6 +132,20 @@ def _property(tmp_path_factory, capsys, targets) -> None:
     designed_or_refused(targets, tmp_path_factory.mktemp("design") / "strip", capsys)
 
 
+def first_drawn(strategy):
+    """The example Hypothesis draws first from ``strategy`` (its simplest, whatever the
+    seed): drawn, not run."""
+    drawn = []
+
+    @settings(max_examples=1, database=None, phases=(Phase.generate,))
+    @given(strategy)
+    def keep(example):
+        drawn.append(example)
+
+    keep()
+    return drawn[0]
+
+
 #: No shrinking: one draw takes about a minute, and the failing targets are printed as drawn.
 SETTINGS = settings(max_examples=DRAWS, deadline=None, database=None,
                     phases=(Phase.explicit, Phase.generate),
@@ -141,11 +155,17 @@ SETTINGS = settings(max_examples=DRAWS, deadline=None, database=None,
 @pytest.mark.slow
 @pytest.mark.parametrize("part", range(3), ids=lambda p: f"draws{p * DRAWS + 1}-{(p + 1) * DRAWS}")
 def test_every_written_design_passes_its_own_check(part, tmp_path_factory, capsys):
-    # three parts run on separate workers; each draws its own targets (a seed per part)
+    # three parts run on separate workers; each draws its own targets (a seed per part).
+    # Hypothesis tries the simplest targets first whatever the seed, so with one draw a
+    # part every part ran the same design: the parts after the first pass it over (no
+    # design is run for it) and draw from their seeds
+    simplest = first_drawn(design_targets())
+
     @seed(7919 * (part + 1))
     @SETTINGS
     @given(targets=design_targets())
     def prop(targets):
+        assume(part == 0 or targets != simplest)
         _property(tmp_path_factory, capsys, targets)
 
     prop()
