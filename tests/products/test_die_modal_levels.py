@@ -288,3 +288,21 @@ def test_a_dies_modal_rows_and_its_records_rows_agree_by_name_and_value(
         assert row["K_error_rel"] == row["K_closed_form_error_rel"]
         assert row["deprecated_keys"]["K_error_rel"] == "K_closed_form_error_rel"
         assert fem3d[role]["K_error_rel"] != row["K_closed_form_error_rel"]
+
+
+def test_a_dies_stiffness_at_fem3d_names_the_closed_forms_k_as_its_records_do(
+        die_folder, tmp_path, stand_in):
+    # stiffness --model fem3d wrote closed_form_N_per_mm / closed_form_error_rel where the
+    # die's FE check and fem3d record write K_closed_form_N_per_mm / K_closed_form_error_rel
+    r = run_cli("stiffness", "--design", DIE_EXAMPLE.name, "--cache", tmp_path / "store",
+                "--model", "fem3d", "--json", cwd=die_folder)
+    assert r.returncode == 0 and stand_in == ROLES, r.stdout[-400:]
+    closed = json.loads(run_cli("stiffness", "--design", DIE_EXAMPLE.name, "--json",
+                                cwd=die_folder).stdout)
+    for row, was in zip(json.loads(r.stdout)["rows"], closed["rows"]):
+        assert row["K_closed_form_N_per_mm"] == was["stiffness_N_per_mm"]
+        assert row["K_closed_form_error_rel"] == pytest.approx(was["stiffness_N_per_mm"] - 1.0)
+        assert row["deprecated_keys"] == {"closed_form_N_per_mm": "K_closed_form_N_per_mm",
+                                          "closed_form_error_rel": "K_closed_form_error_rel"}
+        assert row["closed_form_N_per_mm"] == row["K_closed_form_N_per_mm"]
+        assert row["closed_form_error_rel"] == row["K_closed_form_error_rel"]

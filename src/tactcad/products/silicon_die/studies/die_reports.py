@@ -111,10 +111,20 @@ def strength_report(plan) -> tuple[dict, list[str]]:
     return report, lines
 
 
+#: The keys of a die's ``stiffness --model fem3d --json`` rows renamed, old -> new: the
+#: closed form's K and its error against fem3d under the names the die's FE check and
+#: ``tactcad die --fem3d`` give them (docs/reference/glossary.md); the old keys are still
+#: written beside them and listed in each row's ``deprecated_keys``.
+STIFFNESS_RENAMED = {"closed_form_N_per_mm": "K_closed_form_N_per_mm",
+                     "closed_form_error_rel": "K_closed_form_error_rel"}
+
+
 def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]:
     """Each row's beam K on its frame at ``model`` (``closed-form``, or ``fem3d`` with the
-    closed form's error against it; the fem3d solve kept in the result store): (report,
-    text lines). N/mm, um, s."""
+    closed form's K and its error against fem3d, ``K_closed_form_N_per_mm`` and
+    ``K_closed_form_error_rel``, old names beside them, :data:`STIFFNESS_RENAMED`; the
+    fem3d solve kept in the result store): (report, text lines). N/mm, um, s."""
+    from tactcad.in_use.kobj_budget import with_declared_deprecated_keys
     from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
                                                               root_extension_um)
 
@@ -129,9 +139,10 @@ def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]
         if model == "fem3d":
             fem = die_beam_fem3d_kept(plan, beam)
             row.update(model="fem3d", stiffness_N_per_mm=fem.k_N_per_mm,
-                       error_estimate_rel=fem.k_error_rel, closed_form_N_per_mm=k,
-                       closed_form_error_rel=k / fem.k_N_per_mm - 1.0,
+                       error_estimate_rel=fem.k_error_rel, K_closed_form_N_per_mm=k,
+                       K_closed_form_error_rel=k / fem.k_N_per_mm - 1.0,
                        wall_time_s=fem.wall_time_s, dofs=fem.dofs)
+            row = with_declared_deprecated_keys(row, STIFFNESS_RENAMED)
         rows.append(row)
     report = {"die": plan.name, "model": model, "rows": rows,
               "K_r_over_K_m": rows[0]["stiffness_N_per_mm"] / rows[1]["stiffness_N_per_mm"]}
@@ -145,7 +156,7 @@ def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]
         lines.append(f"| {r['row']} | {r['role']} | {r['length_um']:.4g} | {r['width_um']:g} | "
                      f"{r['thickness_um']:g} | {r['stiffness_N_per_mm']:.4g} | "
                      f"+-{100 * r['error_estimate_rel']:.2g} % | {r['target_N_per_mm']:.4g} |"
-                     + (f" {100 * r['closed_form_error_rel']:+.2f} % | {r['wall_time_s']:.1f} |"
+                     + (f" {100 * r['K_closed_form_error_rel']:+.2f} % | {r['wall_time_s']:.1f} |"
                         if model == "fem3d" else ""))
     lines.append(f"K_r / K_m {report['K_r_over_K_m']:.4g}; closed form: bending over L + dL "
                  "(the frame's give at the root) and Timoshenko shear over L")
