@@ -274,6 +274,77 @@ def test_a_stated_pocket_depth_is_the_dies_and_its_carrier_fills_it():
         assert f"{own.pocket_depth_mm:.4g} ... 2.1 mm" == err.value.allowed
 
 
+#: Lab jaw files the die does not fit (a ``[grasper_jaw]`` each, mm): too thin for the die,
+#: its attach and carrier over the steel under them; thin with a shallow stated pocket; a
+#: shallow stated pocket; thin in a 5 mm shaft that the thicker jaw passes only narrowed;
+#: thin in a 5 mm shaft that no thicker jaw holding the die passes closed
+THIN_JAW = {"shaft_diameter_mm": 8.0, "width_mm": 4.0, "length_mm": 20.0, "thickness_mm": 1.0,
+            "opposing_jaw_mm": 2.6, "pin_inset_mm": -3.0, "opening_angle_deg": 45.0}
+DIE_PASTE_JAWS = {
+    "thin": THIN_JAW,
+    "thin_shallow": {**THIN_JAW, "pocket_depth_mm": 0.4},
+    "shallow": {**THIN_JAW, "thickness_mm": 2.0, "pocket_depth_mm": 0.5},
+    "narrowed": {**THIN_JAW, "shaft_diameter_mm": 5.0, "opposing_jaw_mm": 2.9, "width_mm": 3.0},
+    "shaft": {**THIN_JAW, "shaft_diameter_mm": 5.0, "opposing_jaw_mm": 3.6, "width_mm": 1.9},
+}
+
+
+def _write_jaw(path: Path, table: dict) -> None:
+    """A lab's jaw file: its ``[grasper_jaw]`` table as TOML."""
+    lines = [f"{k} = {json.dumps(v)}" for k, v in table.items()]
+    path.write_text("[grasper_jaw]\n" + "\n".join(lines) + "\n", encoding="utf-8")
+
+
+@pytest.mark.parametrize("name", sorted(DIE_PASTE_JAWS))
+def test_every_die_jaw_paste_loads_through_the_jaws_rules_and_seats_the_die(tmp_path, name):
+    """Each jaw file key the die's refusal offers, written into the file and read back as
+    ``--jaw FILE`` is (each key's range, the pivot, the depth, the closed jaws in the
+    shaft), makes a jaw the die fits; where none would (the thicker jaw passes its shaft at
+    no width that holds the die), none is offered and the refusal names the shaft it needs
+    (it once offered a thicker jaw that its own shaft refused)."""
+    import math
+
+    from tactcad.commands.design import jaw_of
+    from tactcad.errors import DesignErrors
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.products.silicon_die.design.die_mount import die_misfit
+    from tactcad.products.silicon_die.design.mems_die import DEFAULT_COLUMNS
+
+    path = tmp_path / f"{name}.toml"
+    _write_jaw(path, DIE_PASTE_JAWS[name])
+    room = jaw_room(*jaw_of(str(path)))
+    missed = die_misfit(room, room.table, DEFAULT_COLUMNS)
+    assert missed  # the die does not fit the file as it stands
+    pastes = [m["option"] for m in missed if m["option"].startswith("grasper_jaw.")]
+    if name == "shaft":
+        table = DIE_PASTE_JAWS[name]
+        assert pastes == [] and len(missed) == 1
+        words = missed[0]["words"]
+        assert "no jaw of the 5 mm shaft holds it" in words and "shaft_diameter_mm" in words
+        need = float(words.split("a shaft of at least ")[1].split(" mm")[0])
+        thick = float(words.split("closed jaws (")[1].split(" mm")[0])
+        assert thick >= 1.18 and need > table["shaft_diameter_mm"]
+        # the thinnest jaw the die takes, at the narrowest width that holds its pocket,
+        # passes no 5 mm shaft closed: the shaft named is at least their diagonal
+        narrowest = float(words.split("at least ")[1].split(" mm wide")[0])
+        assert need >= math.hypot(narrowest, thick + table["opposing_jaw_mm"]) - 1e-9
+        with pytest.raises(DesignErrors):
+            jaw_room({**table, "thickness_mm": thick, "width_mm": narrowest}, str(path))
+        return
+    assert pastes  # a lab's own file, a misfit its keys mend: something to paste
+    for paste in pastes:
+        keys, _, file = paste.rpartition(" in ")
+        assert file == str(path)
+        table = dict(DIE_PASTE_JAWS[name])
+        for key in keys.split(" and "):
+            field, value = key.removeprefix("grasper_jaw.").split(" = ")
+            table[field] = float(value)
+        pasted = tmp_path / f"{name}_pasted.toml"
+        _write_jaw(pasted, table)
+        again = jaw_room(*jaw_of(str(pasted)))  # raises on any key the jaw's rules refuse
+        assert die_misfit(again, again.table, DEFAULT_COLUMNS) == []
+
+
 def test_a_pocket_no_product_fits_is_refused_naming_its_keys_for_each(tmp_path):
     """A 0.5 x 1 mm pocket: the comb's width and length and the die's, each against the
     pocket's key (it was '--columns = 4: allowed at most 0 columns'), with what to paste."""

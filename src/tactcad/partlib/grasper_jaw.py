@@ -516,7 +516,8 @@ class JawRoom:
         height; mm): :meth:`file_paste`'s keys (none where no jaw of its shaft holds it)."""
         return self.file_paste(env)[0]
 
-    def file_paste(self, env: tuple[float, float, float]) -> tuple[list[tuple[str, str]], str]:
+    def file_paste(self, env: tuple[float, float, float],
+                   face_depth_mm: float | None = None) -> tuple[list[tuple[str, str]], str]:
         """The ``[grasper_jaw]`` settings that make a lab's own jaw hold an insert of
         envelope ``env``: a thicker jaw (and its pocket depth, where the file states one),
         the width that still passes the shaft closed and holds the pocket with its side
@@ -527,6 +528,12 @@ class JawRoom:
 
         Args:
             env: the insert's envelope (across its rows, along, height; mm).
+            face_depth_mm: for an insert in a pocket open at the grasping face (a silicon
+                die): the least depth from the face it takes (mm); the jaw then needs that
+                depth over :data:`MIN_WALL_MM` of steel, a stated ``pocket_depth_mm`` (from
+                the face) is pasted to lie between them, and ``env``'s height is not read.
+                None (a comb, its pocket from the back under a face wall): ``env``'s height
+                against :attr:`height_mm`.
 
         Returns:
             (the settings: ``("grasper_jaw.key = value", why)`` each, mm; why there are none
@@ -544,7 +551,7 @@ class JawRoom:
         update: dict[str, float] = {}
         why: dict[str, str] = {}
         thick = j.thickness_mm
-        if env[2] > self.height_mm + 1e-9:
+        if face_depth_mm is None and env[2] > self.height_mm + 1e-9:
             thick = math.ceil((j.thickness_mm + env[2] - self.height_mm) * 100) / 100
             update["thickness_mm"] = thick
             why["thickness_mm"] = (f"the insert stands {env[2]:.4g} mm high; the jaw's thickness "
@@ -553,6 +560,20 @@ class JawRoom:
                 update["pocket_depth_mm"] = round(thick - j.face_wall_mm, 2)
                 why["pocket_depth_mm"] = (f"the pocket from the back of the {thick:g} mm jaw, "
                                           f"leaving the {j.face_wall_mm:g} mm face wall")
+        if face_depth_mm is not None:  # a pocket open at the face over the steel under it
+            depth = j.pocket_depth_mm
+            if depth is not None and depth < face_depth_mm - 1e-9:
+                depth = math.ceil(round(face_depth_mm * 100, 6)) / 100
+                update["pocket_depth_mm"] = depth
+                why["pocket_depth_mm"] = (f"the insert takes a pocket {face_depth_mm:.4g} mm "
+                                          "deep from the face")
+            need = (face_depth_mm if depth is None else max(depth, face_depth_mm)) + MIN_WALL_MM
+            if thick < need - 1e-9:
+                thick = math.ceil(round(need * 100, 6)) / 100
+                update["thickness_mm"] = thick
+                why["thickness_mm"] = (f"the pocket open at the face, "
+                                       f"{need - MIN_WALL_MM:.4g} mm deep, over {MIN_WALL_MM:g} "
+                                       f"mm of steel")
         pocket_w = j.pocket_width_mm
         if env[0] > self.across_mm + 1e-9 and (pocket_w is not None or self.outline is None):
             pocket_w = math.ceil((env[0] + 2 * c) * 100) / 100
@@ -592,7 +613,17 @@ class JawRoom:
             return [], ("no keys of this jaw file hold it: the jaw they make is refused ("
                         + "; ".join(f"{e.field} = {e.value}: allowed {e.allowed}"
                                     for e in exc.errors) + ")")
-        if room.height_mm < env[2] - 1e-9 or room.along_for(env[0]) <= 0:
+        if face_depth_mm is not None:  # the pasted jaw's steel under its pocket
+            k = with_class_defaults(validated_table("grasper_jaw", GrasperJawSection,
+                                                    {**table, **update}))
+            depth = face_depth_mm if k.pocket_depth_mm is None else k.pocket_depth_mm
+            if depth < face_depth_mm - 1e-9 or k.thickness_mm < depth + MIN_WALL_MM - 1e-9:
+                return [], (f"no keys of this jaw file hold it: its {k.thickness_mm:g} mm jaw "
+                            f"(thickness_mm) then keeps a {depth:g} mm pocket (pocket_depth_mm)"
+                            f", the insert {face_depth_mm:.4g} mm deep over {MIN_WALL_MM:g} mm "
+                            "of steel")
+        high = env[2] if face_depth_mm is None else 0.0  # a face pocket: its depth, above
+        if room.height_mm < high - 1e-9 or room.along_for(env[0]) <= 0:
             return [], ("no keys of this jaw file hold it: its pocket "
                         + ("(pocket_outline_mm) " if self.outline else "")
                         + f"then holds {room.across_mm:.4g} mm across and {room.height_mm:.4g} "

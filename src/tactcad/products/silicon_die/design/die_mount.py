@@ -216,8 +216,11 @@ def die_misfit(room, jaw_table: Mapping[str, Any], columns: int,
 
     Returns:
         Each misfit a dict: ``words`` (the die's size against the jaw's, naming the jaw
-        file's key) and ``option`` (what to paste: fewer columns, or a jaw file's key and
-        value; "" where there is none); empty when the die may fit (its plan decides).
+        file's key; where no key of a lab's jaw file holds the die, why, e.g. the shaft it
+        needs) and ``option`` (what to paste: fewer columns, or a jaw file's keys and values,
+        each paste the jaw file read back through the jaw's own rules by
+        :meth:`~tactcad.partlib.grasper_jaw.JawRoom.file_paste`; "" where there is none);
+        empty when the die may fit (its plan decides).
     """
     from tactcad.partlib.grasper_jaw import (MIN_WALL_MM, GrasperJawSection, validated_table,
                                              with_class_defaults)
@@ -230,19 +233,23 @@ def die_misfit(room, jaw_table: Mapping[str, Any], columns: int,
     pitch = DEFAULT_PITCH_UM if pitch_um is None else pitch_um
     least = least_pocket_depth_mm()
     out = []
-    if j.thickness_mm < least + MIN_WALL_MM - 1e-9:
-        need = math.ceil((least + MIN_WALL_MM) * 100) / 100
-        out.append({"words": f"thickness: the thinnest die, its attach and carrier "
-                             f"({least:.3g} mm) over {MIN_WALL_MM:g} mm of steel need "
-                             f"{least + MIN_WALL_MM:.3g} mm vs the jaw's {j.thickness_mm:g} mm "
-                             "(thickness_mm)",
-                    "option": f"grasper_jaw.thickness_mm = {need:g}{where}" if own else ""})
-    elif j.pocket_depth_mm is not None and j.pocket_depth_mm < least - 1e-9:
-        need = math.ceil(least * 100) / 100
-        out.append({"words": f"depth: the thinnest die, its attach and carrier need "
-                             f"{least:.3g} mm vs the pocket's {j.pocket_depth_mm:g} mm "
-                             "(pocket_depth_mm)",
-                    "option": f"grasper_jaw.pocket_depth_mm = {need:g}{where}" if own else ""})
+    thin = j.thickness_mm < least + MIN_WALL_MM - 1e-9
+    if thin or (j.pocket_depth_mm is not None and j.pocket_depth_mm < least - 1e-9):
+        # the keys to paste are the jaw file's own check's (JawRoom.file_paste): read back
+        # through the jaw's rules (the closed jaws in the shaft among them) before offered
+        across = 2 * FRAME_UM * 1e-3 + 0.01  # past the die's two frames, by a hundredth
+        along = (columns * pitch + 2 * END_UM) * 1e-3 + BOND_SHELF_MM
+        keys, why_not = room.file_paste((across, along, 0.0), face_depth_mm=least)
+        why_not = f"; {why_not}" if own and why_not else ""
+        option = f"{' and '.join(k for k, _ in keys)}{where}" if own and keys else ""
+        if thin:
+            words = (f"thickness: the thinnest die, its attach and carrier ({least:.3g} mm) "
+                     f"over {MIN_WALL_MM:g} mm of steel need {least + MIN_WALL_MM:.3g} mm vs "
+                     f"the jaw's {j.thickness_mm:g} mm (thickness_mm)")
+        else:
+            words = (f"depth: the thinnest die, its attach and carrier need {least:.3g} mm vs "
+                     f"the pocket's {j.pocket_depth_mm:g} mm (pocket_depth_mm)")
+        out.append({"words": words + why_not, "option": option})
     if room.across_mm * 1e3 <= 2 * FRAME_UM + 1e-6:
         out.append({"words": f"width: the die's two {FRAME_UM:g} um frames and its beams "
                              f"between need more than {2 * FRAME_UM * 1e-3:g} mm vs the "
