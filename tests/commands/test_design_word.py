@@ -87,3 +87,10 @@ def test_a_labs_jaw_file_is_copied_into_the_project_with_its_comments(tmp_path):
     copied = tmp_path / "probe" / "probe_jaw.toml"
     assert copied.read_text(encoding="utf-8") == lab.read_text(encoding="utf-8")
     assert run_cli("strength", tmp_path / "probe", "--quiet").returncode == 0
+
+
+def test_a_design_name_too_long_for_the_system_is_refused_by_name_not_raised(tmp_path):
+    # --design's folder test asked the system about the name and raised its OSError
+    result = run_cli("strength", "--design", "a" * 300, "--json")
+    assert result.returncode in (2, 3) and json.loads(result.stdout)["error"]["message"]
+    assert "Traceback" not in result.stderr

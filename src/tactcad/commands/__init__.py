@@ -74,10 +74,19 @@ def settle_design(args: argparse.Namespace) -> None:
         args.design = word
         args.design_word = None  # one design, read from --design by every command from here
     design = getattr(args, "design", None)
-    if design is not None and Path(design).is_dir():
+    if design is not None and _is_folder(design):
         from tactcad.project_folder import design_in_folder
 
         args.design = str(design_in_folder(design))
+
+
+def _is_folder(path: str) -> bool:
+    """Whether ``path`` names a folder; a name the system cannot look up (too long) is
+    none, and reading it as a file names its fault."""
+    try:
+        return Path(path).is_dir()
+    except OSError:
+        return False
 
 
 def add_output_args(p: argparse.ArgumentParser, json_help: str = "print one JSON object") -> None:

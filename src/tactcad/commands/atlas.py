@@ -104,8 +104,7 @@ def ranges_of(args: argparse.Namespace) -> dict[str, tuple[float, float]]:
     return out
 
 
-#: The words of a comb's misfit in a size that does not depend on its columns.
-COLUMN_FREE_MISFITS = ("height", "width")
+from tactcad.studies.comb_design import COLUMN_FREE_MISFITS  # noqa: E402 (re-exported)
 
 
 def comb_misfits(room, columns: range, base: dict, targets) -> list[dict]:

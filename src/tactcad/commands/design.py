@@ -1177,6 +1177,10 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         screen = c.jaw_screen()  # asked by name too: a product the jaw cannot hold is said so
         missed = screen(room, args.columns or 6, base, targets, args.material,
                         args.process) if screen else []
+        if args.construction != "auto":  # asked by name: what no column count mends; the
+            from tactcad.studies.comb_design import COLUMN_FREE_MISFITS  # search says the rest
+
+            missed = [m for m in missed if m.get("words", "").startswith(COLUMN_FREE_MISFITS)]
         if missed:
             misfits.append((c.name, missed + _other_classes_holding(c, args, base, targets)))
             continue

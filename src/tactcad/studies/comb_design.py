@@ -176,6 +176,9 @@ class FastenerTry:
         return f"{self.screw_size} screws, {self.dowel_diameter_mm:g} mm dowels"
 
 
+#: The words of a comb's misfit in a size that does not depend on its columns.
+COLUMN_FREE_MISFITS = ("height", "width")
+
 def sheets_of(base: Mapping[str, Any]) -> tuple[float, ...]:
     """The sheets (mm) the comb is searched over: :data:`SHEETS_MM` for wire EDM; for
     another process of the base's ``[element] process``, the foil and stock gauges its
