@@ -39,6 +39,18 @@ DIE_FILES = {"masks": "{name}.gds", "wafer": "{name}_wafer.gds", "step": "{name}
              "review": "review/index.html", "manifest": "manifest.json"}
 #: The files whose sha256 the manifest cannot hold: itself.
 NOT_IN_MANIFEST = ("manifest",)
+#: The checks ``tactcad check`` adds to the export's own, on the written files as they lie
+#: in the folder (the export prints its checks before it moves its files in): each one
+#: check of a fresh export (``export_file``: one per file edited by hand since, when any).
+READ_BACK_CHECKS = {"die_files": "every file of the die there",
+                    "export_file": "no file changed since the export, sha256 as manifest.json "
+                                   "lists",
+                    "die_record": "the record holds the plan the design makes"}
+
+
+def read_back_words() -> str:
+    """The checks :data:`READ_BACK_CHECKS` names, each with what it asks, as one phrase."""
+    return ", ".join(f"{k} ({v})" for k, v in READ_BACK_CHECKS.items())
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -621,7 +633,10 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
     if mount is not None:
         lines += ["", f"in the {jaw}:"] + [f"  {k}: {v}" for k, v in mount.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
-                  "wafer)", "", *[c.line() for c in checks], "", counts]
+                  "wafer)", "", *[c.line() for c in checks], "", counts,
+              f"`tactcad check` prints these {len(checks)} checks read back from the written "
+              f"files and {len(READ_BACK_CHECKS)} of the files themselves: "
+              f"{read_back_words()}"]
     return "\n".join(lines)
 
 
@@ -773,12 +788,35 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                      "export_refusal": found.export_refusal,
                      "checks": [{"check": c.check, "subject": c.subject,
                                  "status": c.status, "detail": c.detail} for c in checks],
-                     "counts": counts}, indent=1))
+                     "counts": counts,
+                     # the export's own checks and those on the files (READ_BACK_CHECKS)
+                     "checks_on_the_files": sum(c.check in READ_BACK_CHECKS for c in checks),
+                     "checks_export_prints": sum(c.check not in READ_BACK_CHECKS
+                                                 for c in checks)}, indent=1))
     else:
         shown = [c for c in checks if not (args.failures_only and c.status == "pass")]
         print("\n".join([f"checking the die {found.name} in {out}",
-                         *[c.line() for c in shown], counts_text(counts)]))
+                         *[c.line() for c in shown], counts_text(counts),
+                         read_back_said(checks)]))
     return 1 if counts["failed"] else 0
+
+
+def read_back_said(checks) -> str:
+    """How a die's check's count differs from its export's: the checks of the files
+    themselves (:data:`READ_BACK_CHECKS`) it adds, the rest those ``tactcad export``
+    prints.
+
+    Args:
+        checks: the die's check's results, in order.
+
+    Returns:
+        One line, e.g. ``3 of them on the files themselves (die_files, ...); the other 50
+        are the checks `tactcad export` prints``.
+    """
+    own = [c for c in checks if c.check in READ_BACK_CHECKS]
+    names = ", ".join(dict.fromkeys(c.check for c in own))
+    return (f"{len(own)} of them on the files themselves ({names}); the other "
+            f"{len(checks) - len(own)} are the checks `tactcad export` prints")
 
 
 def die_check(design: Path, args: argparse.Namespace,
