@@ -189,6 +189,12 @@ class CoarseReadingWarning(UserWarning):
     twice or half as stiff."""
 
 
+class JawNotJudgedWarning(UserWarning):
+    """A design states a ``[grasper_jaw]`` table its construction is not judged against (the
+    stacked array does not seat in a jaw): the message names the table and the
+    constructions that are."""
+
+
 class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
 

@@ -154,3 +154,61 @@ def test_of_two_keys_set_the_one_some_value_of_which_passes_is_named():
     bound = _bound(e.allowed)
     assert 0.5 <= bound < 9.0
     assert tactcad.load(COMB, set={**set_, "grasper_jaw.opposing_jaw_mm": bound}).plan.slots
+
+
+STACKED = EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml"
+JAW_SET = ["--set", "grasper_jaw.width_mm=7.5"]
+
+
+def test_a_stacked_arrays_stated_jaw_is_said_passed_over_naming_what_is_judged():
+    """A [grasper_jaw] a stacked array states is not judged: the load says so in one
+    warning naming the table, the construction and those judged against a jaw."""
+    from tactcad.errors import JawNotJudgedWarning
+
+    with pytest.warns(JawNotJudgedWarning) as said:
+        tactcad.load(STACKED, set={"grasper_jaw.width_mm": 7.5})
+    texts = [str(w.message) for w in said if w.category is JawNotJudgedWarning]
+    assert len(texts) == 1, texts
+    text = texts[0]
+    assert "\n" not in text and text.startswith(f"{STACKED.name}: [grasper_jaw]")
+    assert 'array.construction = "stacked"' in text and "not judged against a jaw" in text
+    assert 'array.construction = "monolithic-comb"' in text and "silicon die" in text
+
+
+@pytest.mark.parametrize("design, overrides", [
+    (STACKED, {}),  # no jaw stated: nothing to say
+    (COMB, {}),  # the comb is judged against its jaw
+    (COMB, {"grasper_jaw.length_mm": 34.0}),
+])
+def test_no_jaw_warning_where_none_is_passed_over(design, overrides, recwarn):
+    from tactcad.errors import JawNotJudgedWarning
+
+    tactcad.load(design, set=overrides)
+    load_design(design)
+    assert not [w for w in recwarn if w.category is JawNotJudgedWarning]
+
+
+def test_load_design_says_a_stacked_arrays_jaw_passed_over(tmp_path):
+    from tactcad.errors import JawNotJudgedWarning
+
+    mine = tmp_path / "my_stack.toml"
+    mine.write_text(STACKED.read_text(encoding="utf-8")
+                    + '\n[grasper_jaw]\nshaft_class_mm = "10"\n', encoding="utf-8")
+    with pytest.warns(JawNotJudgedWarning, match=r"^my_stack\.toml: \[grasper_jaw\] stated"):
+        load_design(mine)
+
+
+def test_a_commands_run_says_the_passed_over_jaw_once_json_lists_it_quiet_silences_it(
+        capsys):
+    argv = ["strength", "--design", str(STACKED), *JAW_SET]
+    assert cli.main(argv) == 0
+    err = capsys.readouterr().err
+    lines = [x for x in err.splitlines() if "[grasper_jaw]" in x]
+    assert len(lines) == 1 and lines[0].startswith("tactcad: warning: "), err
+    assert "monolithic-comb" in lines[0]
+    assert cli.main([*argv, "--json"]) == 0
+    out = capsys.readouterr()
+    warned = [w for w in json.loads(out.out)["warnings"] if "[grasper_jaw]" in w]
+    assert len(warned) == 1 and "[grasper_jaw]" not in out.err, out.err
+    assert cli.main([*argv, "--quiet"]) == 0
+    assert "[grasper_jaw]" not in capsys.readouterr().err

@@ -1036,13 +1036,14 @@ def load_design(path: str | Path | None = None) -> Plan:
             cannot fit (:func:`tactcad.partlib.tissue_slab.stated_grasper_errors`).
     """
     from tactcad.design.file_kind import read_array_tables
-    from tactcad.partlib.tissue_slab import stated_grasper_errors
+    from tactcad.partlib.tissue_slab import stated_grasper_errors, warn_jaw_not_judged
 
     p = Path(path) if path is not None else DEFAULT_DESIGN
     plan = plan_from_dict(read_array_tables(p), source=str(p), file=p.name)
     jaw_errors = stated_grasper_errors(plan, p.name)  # the jaw it states takes its insert
     if jaw_errors:
         raise DesignErrors(jaw_errors)
+    warn_jaw_not_judged(plan, p.name)  # a jaw a stacked array passes over, said
     return plan
 
 

@@ -211,7 +211,7 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems,
              set_keys: Iterable[str] = ()) -> Plan | None:
     if design is None:
         return None
-    from tactcad.partlib.tissue_slab import stated_grasper_errors
+    from tactcad.partlib.tissue_slab import stated_grasper_errors, warn_jaw_not_judged
 
     model, found = validate_design(design, Path(source).name)
     too_few = stacked_columns_error(design, Path(source).name)  # a row must hold a pair
@@ -222,6 +222,7 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems,
     # the jaw the design states takes its insert (the rules its part applies), refused here
     # rather than first by the command that builds it
     problems.extend(stated_grasper_errors(plan, Path(source).name, tuple(set_keys)))
+    warn_jaw_not_judged(plan, Path(source).name)  # a jaw a stacked array passes over, said
     return plan
 
 
