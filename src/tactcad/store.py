@@ -379,6 +379,43 @@ def active_store() -> Store | None:
     return None if block is None else block[0]
 
 
+def copy_block_results(target: Path) -> int:
+    """Copy every value :func:`kept_result` answered in the enclosing
+    :func:`keeping_results` block (computed or read back) from the block's store into the
+    store at ``target``, where another run looks for them (``design --out NEW_DIR`` solves
+    into the store beside the new folder, then gives the folder the results its commands
+    read). Entries ``target`` holds already, and values never written (no store, a value
+    that did not pickle), are left. Best effort: a store that cannot be written costs only
+    the next run's time.
+
+    Args:
+        target: the store folder to copy into (made when a value is copied).
+
+    Returns:
+        How many values were copied.
+    """
+    block = _RESULTS.get()
+    if block is None or block[0].root is None:
+        return 0
+    store, memory = block
+    into = Store(Path(target))
+    if into.root is not None and store.root is not None and \
+            os.path.abspath(into.root) == os.path.abspath(store.root):
+        return 0
+    copied = 0
+    for key in memory:
+        source, kept = store._memo_path(key), into._memo_path(key)
+        if kept.is_file() or not source.is_file():
+            continue
+        try:
+            kept.parent.mkdir(parents=True, exist_ok=True)
+            write_bytes_atomic(kept, source.read_bytes(), noted=False)
+            copied += 1
+        except OSError:
+            pass
+    return copied
+
+
 #: Where :func:`kept_result` found a kept value, as a progress line says it.
 REUSED_FROM_STORE = "reused from the result store"
 REUSED_IN_RUN = "reused from this run's earlier solve"

@@ -419,6 +419,10 @@ def test_design_keeps_its_fem_results_in_the_project_it_writes(tmp_path):
         return store_from_args(argparse.Namespace(no_cache=False, cache=cache, out=str(out),
                                                   default_store=project_store)).root
 
+    # a new folder is not made for the store: the folder it would be made in keeps it, as
+    # for a design file written there (a refused design then leaves it for its rerun)
+    assert store(tmp_path / "palp") == tmp_path / ".tactcad-cache"
+    (tmp_path / "palp").mkdir()
     assert store(tmp_path / "palp") == tmp_path / "palp" / ".tactcad-cache"
     assert store(tmp_path / "d" / "new.toml") == tmp_path / "d" / ".tactcad-cache"
     assert store(tmp_path / "palp", cache=str(tmp_path / "c")) == tmp_path / "c"

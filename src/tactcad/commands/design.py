@@ -253,7 +253,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "tactcad verify on it)")
     add_design_arg(p, design_word=False)
     add_cache_args(p, ".tactcad-cache in the folder the design is written to, where the "
-                      "project's commands find it")
+                      "project's commands find it; for a new --out DIR, the folder DIR is "
+                      "made in, copied into DIR with the project, so a refused design "
+                      "makes no folder and its rerun solves nothing again")
     add_output_args(p, "print JSON")
     p.set_defaults(func=run, default_store=project_store)
 
@@ -326,31 +328,52 @@ def check_output_path(out: str, force: bool) -> Path:
 
 def project_store(args: argparse.Namespace) -> Path:
     """Where ``design`` keeps its FEM results without ``--cache``: the store of the folder
-    the design is written to (``--out DIR``, or the folder of ``--out NEW.toml``), so
-    ``verify`` run in that folder right after solves nothing again."""
+    the design is written to (an existing ``--out DIR``, or the folder of ``--out
+    NEW.toml``), so ``verify`` run in that folder right after solves nothing again. A new
+    ``--out DIR`` is not made for the store: its results go to the store of the folder it
+    would be made in (as ``--out NEW.toml`` there), so a refused design, which makes no
+    folder, leaves them where the same command run again finds them; a written project gets
+    a copy in its own store (:func:`run`).
+
+    Args:
+        args: the design's options (``out``).
+
+    Returns:
+        The store folder.
+    """
     from tactcad.store import STORE_FOLDER
 
-    out = Path(args.out)
-    return (out if not args.out.endswith(".toml") else out.parent) / STORE_FOLDER
+    out = Path(os.path.expanduser(args.out))  # as check_project_folder reads it
+    if args.out.endswith(".toml") or not out.is_dir():
+        return out.parent / STORE_FOLDER
+    return out / STORE_FOLDER
 
 
 def run(args: argparse.Namespace) -> int:
-    """``design``: the searched design written, or a refusal that leaves no folder it made
-    (a new ``--out DIR`` that only got the store of the solves made for it)."""
+    """``design``: the searched design written, or a refusal that leaves no folder it made.
+    A new ``--out DIR`` is made only by the project written: the solves go to the store of
+    the folder it lies in (:func:`project_store`), where a rerun of a refused design finds
+    them, and a written project gets a copy of them in its own store."""
     from tactcad.atomic import refuse_too_long_name
+    from tactcad.store import STORE_FOLDER, copy_block_results
 
     refuse_too_long_name("--out", args.out,  # before the file system is asked of it
                          "a file" if args.out.endswith(".toml") else "a folder")
-    out = Path(args.out)
+    out = Path(os.path.expanduser(args.out))  # as check_project_folder reads it
     made = not out.exists() and not args.out.endswith(".toml")
     try:
-        return _run(args)
+        code = _run(args)
     except (DesignError, KeyboardInterrupt):
-        if made and out.is_dir() and {p.name for p in out.iterdir()} <= {project_store(args).name}:
+        if made and out.is_dir() and {p.name for p in out.iterdir()} <= {STORE_FOLDER}:
             import shutil
 
             shutil.rmtree(out, ignore_errors=True)
         raise
+    if made and out.is_dir() and not getattr(args, "cache", None) \
+            and not getattr(args, "no_cache", False):
+        # solved into the store beside it (project_store): the project's commands read theirs
+        copy_block_results(out / STORE_FOLDER)
+    return code
 
 
 def _run(args: argparse.Namespace) -> int:
