@@ -1036,7 +1036,8 @@ def load_design(path: str | Path | None = None) -> Plan:
             cannot fit (:func:`tactcad.partlib.tissue_slab.stated_grasper_errors`).
     """
     from tactcad.design.file_kind import read_array_tables
-    from tactcad.partlib.tissue_slab import stated_grasper_errors, warn_jaw_not_judged
+    from tactcad.design.construction_registry import warn_jaw_not_judged
+    from tactcad.partlib.tissue_slab import stated_grasper_errors
 
     p = Path(path) if path is not None else DEFAULT_DESIGN
     plan = plan_from_dict(read_array_tables(p), source=str(p), file=p.name)

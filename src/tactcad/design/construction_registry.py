@@ -223,3 +223,54 @@ register_construction(Construction(
     jaw_design="tactcad.studies.comb_design:comb_for_jaw",
     jaw_template="grasper_jaw_10mm/grasper_jaw_10mm.toml",
     jaw_fit="tactcad.studies.comb_design:comb_misfit"))
+
+
+def jaw_not_judged(plan, file: str = "") -> str | None:
+    """What a design that states ``[grasper_jaw]`` is told when its construction is not
+    judged against a jaw (the stacked array: no jaw search in its construction's entry and
+    no kernel-free envelope, so :func:`stated_grasper_errors` passes the jaw over); None
+    when no jaw is stated or the construction seats in it.
+
+    Args:
+        plan: the design's plan (``plan.raw`` its tables, ``--set`` values included).
+        file: the design file's name, for the message.
+
+    Returns:
+        One line naming the file and table, the construction and those judged against a
+        jaw, or None.
+    """
+    from tactcad.partlib.grasper_jaw import insert_envelope_mm
+
+    raw = getattr(plan, "raw", None) or {}
+    if "grasper_jaw" not in raw or insert_envelope_mm(plan) is not None:
+        return None
+    made = construction_of(plan)
+    if made.jaw_design:
+        return None
+    seated = [f'array.construction = "{c.name}"' for c in CONSTRUCTIONS.values()
+              if c.jaw_design]
+    where = f"{file}: " if file else ""
+    return (f"{where}[grasper_jaw] stated, but a {made.name} array "
+            f'(array.construction = "{made.name}") is not judged against a jaw: its '
+            "construction does not seat in one, so the jaw's fit (its pocket, pivot and "
+            "window, the closed jaws in the shaft) is not checked; a stated jaw is judged for "
+            f"a monolithic comb ({', '.join(seated)}) and a silicon die (a [die] file, "
+            "`tactcad design --jaw`)")
+
+
+def warn_jaw_not_judged(plan, file: str = "") -> None:
+    """Issue :func:`jaw_not_judged`'s line, where there is one, as a
+    :class:`~tactcad.errors.JawNotJudgedWarning` (a command says it once on stderr,
+    ``--quiet`` silences it, ``--json`` lists it under ``warnings``).
+
+    Args:
+        plan: the design's plan.
+        file: the design file's name, for the message.
+    """
+    import warnings
+
+    from tactcad.errors import JawNotJudgedWarning
+
+    text = jaw_not_judged(plan, file)
+    if text is not None:
+        warnings.warn(JawNotJudgedWarning(text), stacklevel=3)

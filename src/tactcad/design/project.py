@@ -211,7 +211,8 @@ def _plan_of(design: Mapping[str, Any] | None, source: str, problems: Problems,
              set_keys: Iterable[str] = ()) -> Plan | None:
     if design is None:
         return None
-    from tactcad.partlib.tissue_slab import stated_grasper_errors, warn_jaw_not_judged
+    from tactcad.design.construction_registry import warn_jaw_not_judged
+    from tactcad.partlib.tissue_slab import stated_grasper_errors
 
     model, found = validate_design(design, Path(source).name)
     too_few = stacked_columns_error(design, Path(source).name)  # a row must hold a pair
