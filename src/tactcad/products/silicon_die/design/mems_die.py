@@ -716,6 +716,29 @@ def stress_at_travel_error_rel(kt_error_rel: float) -> float:
     return float(kt_error_rel) + CLOSED_FORM_K_ERROR_REL
 
 
+def k_moved_error_rel(plan, figure) -> float:
+    """The largest relative change of ``figure(plan)`` with K_r and K_m each moved by the
+    closed form's K error (:data:`CLOSED_FORM_K_ERROR_REL`), every sign combination (as the array's
+    :func:`tactcad.studies.verification.worst_and_error`).
+
+    Args:
+        plan: the die. figure: a function of a plan giving a relative figure (> 0).
+
+    Returns:
+        The relative error; inf where the figure or a moved one is not finite or not above 0.
+    """
+    from dataclasses import replace
+
+    base = figure(plan)
+    e = CLOSED_FORM_K_ERROR_REL
+    moved = [figure(replace(plan, k_r_N_per_mm=plan.k_r_N_per_mm * (1 + sr * e),
+                            k_m_N_per_mm=plan.k_m_N_per_mm * (1 + sm * e)))
+             for sr in (-1, 1) for sm in (-1, 1)]
+    if not all(math.isfinite(v) and v > 0 for v in (base, *moved)):
+        return math.inf
+    return max(abs(v / base - 1.0) for v in moved)
+
+
 def root_stress_concentration(radius_um: float, width_um: float, thickness_um: float) -> float:
     """K_t of a die beam's root fillets under its tip force, bent out of the wafer's plane:
     the peak stress on the fillets' top edge over the root's nominal 6 F L / (w t^2).

@@ -103,8 +103,7 @@ def resolves(plan, target: float) -> bool:
     """Whether ``plan``'s read-out resolves K_obj to ``target`` with its model's error to
     spare: its worst read-out error (:func:`worst_readout_error_rel`) below the target by
     more than the error ``verify``'s ``kobj_resolution_rel`` row carries
-    (:func:`tactcad.products.silicon_die.studies.die_verification.resolution_error_rel`), so
-    that the row passes rather than stays undecided.
+    (:func:`resolution_error_rel`), so that the row passes rather than stays undecided.
 
     Args:
         plan: the die. target: the K_obj resolution asked (relative, > 0).
@@ -113,8 +112,6 @@ def resolves(plan, target: float) -> bool:
         True when target / worst - 1 exceeds the error.
     """
     import math
-
-    from tactcad.products.silicon_die.studies.die_verification import resolution_error_rel
 
     worst = worst_readout_error_rel(plan)
     if not (math.isfinite(worst) and worst > 0):
@@ -150,6 +147,24 @@ def worst_readout_error_rel(plan) -> float:
                                            np.array([lo, math.sqrt(lo * hi), hi]))))
 
 
+def resolution_error_rel(plan) -> float:
+    """The error of the die's worst read-out K_obj error (:func:`worst_readout_error_rel`):
+    its largest change with each K moved by the closed form's error
+    (:func:`tactcad.products.silicon_die.design.mems_die.k_moved_error_rel`), the error
+    ``verify``'s ``kobj_resolution_rel`` row carries and the die's design keeps room for
+    (:func:`resolves`).
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+
+    Returns:
+        The relative error (inf where the read-out is unreadable).
+    """
+    from tactcad.products.silicon_die.design.mems_die import k_moved_error_rel
+
+    return k_moved_error_rel(plan, worst_readout_error_rel)
+
+
 def _wider_ratio(targets, room, target: float, kwargs) -> float | None:
     """The least of 1.5, 2, 3, 5 and 10 times ``targets``' K_r / K_m (two digits) whose die
     designs and resolves K_obj to ``target`` at the same rating, or None."""
@@ -172,7 +187,6 @@ def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> Desi
     over the rating (the deflections as F, the force resolution fixed), so the rating that
     resolves it is F x worst / target (10 % more, two digits up), pasted where it designs
     and resolves it with its model's error to spare (:func:`resolves`)."""
-    from tactcad.products.silicon_die.studies.die_verification import resolution_error_rel
     from tactcad.vocabulary.binding_limits import RESOLUTION
 
     import dataclasses

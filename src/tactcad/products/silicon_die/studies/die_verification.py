@@ -27,6 +27,11 @@ from __future__ import annotations
 
 import math
 
+# the K-moved error and the read-out's error live with the design that keeps their room;
+# named here too, as the rows carry them
+from tactcad.products.silicon_die.design.mems_die import k_moved_error_rel  # noqa: F401
+from tactcad.products.silicon_die.studies.die_doping import resolution_error_rel  # noqa: F401
+
 
 def kt_error_rel(plan) -> float:
     """The largest error of the root fillets' K_t over the die's beams
@@ -92,32 +97,6 @@ def weibull_probability_error_rel(stress_error_rel: float, modulus: float) -> fl
         The relative error of P_f.
     """
     return (1.0 + stress_error_rel) ** modulus - 1.0
-
-
-def k_moved_error_rel(plan, figure) -> float:
-    """The largest relative change of ``figure(plan)`` with K_r and K_m each moved by the
-    closed form's K error (:data:`tactcad.products.silicon_die.design.mems_die.
-    CLOSED_FORM_K_ERROR_REL`), every sign combination (as the array's
-    :func:`tactcad.studies.verification.worst_and_error`).
-
-    Args:
-        plan: the die. figure: a function of a plan giving a relative figure (> 0).
-
-    Returns:
-        The relative error; inf where the figure or a moved one is not finite or not above 0.
-    """
-    from dataclasses import replace
-
-    from tactcad.products.silicon_die.design.mems_die import CLOSED_FORM_K_ERROR_REL
-
-    base = figure(plan)
-    e = CLOSED_FORM_K_ERROR_REL
-    moved = [figure(replace(plan, k_r_N_per_mm=plan.k_r_N_per_mm * (1 + sr * e),
-                            k_m_N_per_mm=plan.k_m_N_per_mm * (1 + sm * e)))
-             for sr in (-1, 1) for sm in (-1, 1)]
-    if not all(math.isfinite(v) and v > 0 for v in (base, *moved)):
-        return math.inf
-    return max(abs(v / base - 1.0) for v in moved)
 
 
 def _finite_or_none(x: float) -> float | None:
@@ -375,23 +354,6 @@ def accuracy_row(plan, worst: float | None = None, error: float | None = None) -
                              "over the K_obj range, each term before calibration (an upper "
                              "bound); its error: the largest change with each K moved by "
                              "the closed form's K error"}
-
-
-def resolution_error_rel(plan) -> float:
-    """The error of the die's worst read-out K_obj error
-    (:func:`tactcad.products.silicon_die.studies.die_doping.worst_readout_error_rel`): its
-    largest change with each K moved by the closed form's error (:func:`k_moved_error_rel`),
-    the error the ``kobj_resolution_rel`` row carries and the die's design keeps room for.
-
-    Args:
-        plan: the die.
-
-    Returns:
-        The relative error (inf where the read-out is unreadable).
-    """
-    from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
-
-    return k_moved_error_rel(plan, worst_readout_error_rel)
 
 
 def _resolution_row(plan) -> dict:
