@@ -940,8 +940,9 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
             :data:`ROOT_FILLET_RANGE_UM`, or wider than the slot beside the chosen beam
             leaves), no stock device layer and beam width fit
             (naming what binds and the largest K_m the die holds), or the rating past the
-            roots' strength, the cavities' depth or the posts' height (naming a lighter
-            rating, :func:`_check_rating`).
+            roots' strength, the cavities' depth or the posts' height, or within a limit's
+            model error of it (:func:`rating_limit_errors`: verify could not pass it; naming
+            a lighter rating, :func:`_check_rating`).
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
