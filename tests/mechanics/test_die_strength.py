@@ -129,7 +129,8 @@ def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_ver
     """The rating's strength limit was the etched bars' mean whatever pair the lab stated,
     so a weak pair's die was planned and then failed verify with nothing to paste; now the
     pair's failure probability at the rating and on the stops limits the plan, and the
-    refusal's paste designs a die whose verify passes."""
+    refusal's paste designs a die whose verify passes, its stops too: the design keeps each
+    limit's model error as room, so the pasted rating is not left undecided."""
     from tactcad.errors import DesignError
     from tactcad.products.silicon_die.studies.die_verification import die_verification
 
@@ -146,7 +147,10 @@ def test_a_labs_pair_limits_the_rating_it_plans_and_the_pasted_rating_passes_ver
     assert plan.weibull == pair
     rows = {r["requirement"]: r for r in die_verification(plan)}
     assert rows["full_scale_force_N"]["verdict"] == "pass", rows["full_scale_force_N"]
-    assert rows["hard_stop"]["verdict"] == "pass", rows["hard_stop"]
+    # the pasted rating keeps the stops' model error as room: passed, not undecided
+    stop = rows["hard_stop"]
+    assert stop["verdict"] == "pass", stop
+    assert stop["margin_rel"] > stop["error_estimate_rel"] > 0, stop
     # the plan's Weibull scale is the mechanics' own: both say where P_f reaches 1e-3
     from tactcad.products.silicon_die.mechanics.die_strength import force_scale_at_probability
 
@@ -240,3 +244,177 @@ def test_a_labs_strength_table_replaces_the_default_and_a_stronger_pair_rates_mo
     assert "the lab's own DRIE test bars" in rated["binding_words"]
     assert "design-default" not in rated["binding_words"]
     assert "m 5, sigma_0 3000 MPa on 1200 um^2" in rated["binding_words"]
+
+
+# A die on the 5 mm jaw whose 15 um layer and 143 um beams put w / t 9.5 outside the root
+# K_t fit (its error 8 %), rated at the largest force its stops' failure probability allows
+# nominally: the stops' margin (+0.2 % in force) sits inside the model's error.
+EDGE_TARGETS = Targets(3.24, (0.02, 0.3), 0.00112)
+
+
+@pytest.fixture(scope="module")
+def edge_die():
+    """The die design made of EDGE_TARGETS before it kept each limit's model error as room
+    (every limit's error taken as 0), so its stops sit inside their error."""
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(md, "_rating_limit_errors",
+                      lambda rating: [0.0] * len(md._rating_limit_codes(rating)))
+        with pytest.warns(md.RootKtRangeWarning, match="outside its fit"):
+            return doped_die_plan(EDGE_TARGETS, jaw_room("5"), columns=7)
+
+
+def test_design_refuses_a_rating_inside_a_limits_model_error_and_pastes_one_verify_passes():
+    """The stops' failure probability at the edge die's rating is met by +0.2 % in force,
+    inside the 10 % its K_t (outside its fit) and K carry: design refused nothing and verify
+    then left the die undecided. Now design refuses it by --full-scale-force, naming the
+    limit, its error and its margin, and pastes the rating whose die verifies every row
+    PASS, each margin beyond its error."""
+    from tactcad.errors import DesignError
+    from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+
+    with pytest.warns(md.RootKtRangeWarning):
+        with pytest.raises(DesignError) as refused:
+            doped_die_plan(EDGE_TARGETS, jaw_room("5"), columns=7)
+    exc = refused.value
+    assert exc.field == "--full-scale-force" and exc.value == EDGE_TARGETS.full_scale_force_N
+    assert "within its model's 10 % error of the die's failure probability, every beam on " \
+           "its deepest stop" in exc.why and "which verify could not pass" in exc.why
+    force = float(exc.alternatives[0]["option"].split()[-1])
+    assert force < EDGE_TARGETS.full_scale_force_N
+    with pytest.warns(md.RootKtRangeWarning):
+        plan = doped_die_plan(dataclasses.replace(EDGE_TARGETS, full_scale_force_N=force),
+                              jaw_room("5"), columns=7)
+    for limit_and_words, error in zip(md.rating_limits(plan), md.rating_limit_errors(plan)):
+        assert limit_and_words[0] / plan.full_scale_force_N - 1.0 > error
+    for r in die_verification(plan):
+        assert r["verdict"] == "pass", r
+        assert r["margin_rel"] - r.get("allowed_margin_rel", 0.0) > r["error_estimate_rel"], r
+
+
+def test_the_design_keeps_the_room_of_the_errors_verify_judges_by(edge_die):
+    """One source: the errors design keeps as room below the limits are the ones verify's
+    rows carry (the rating's failure probability K_t's; the stops' failure probability and
+    a stop engaging before its root breaks K_t's and K's)."""
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+
+    rows = {r["requirement"]: r for r in die_verification(edge_die)}
+    errors = md.rating_limit_errors(edge_die)
+    words = [w for _, w in md.rating_limits(edge_die)]
+    assert len(errors) == len(words) == 5
+    assert errors[0] == rows["full_scale_force_N"]["error_estimate_rel"]
+    items = {it["item"]: it for it in rows["hard_stop"]["items"]}
+    assert errors[1] == items["the die's failure probability on its stops"][
+        "error_estimate_rel"]
+    assert "every beam on its deepest stop" in words[1]
+    assert errors[2] == items["reference: engages before the root breaks"]["error_estimate_rel"]
+    assert errors[3:] == [0.0, 0.0]  # the cavity's depth and the post's height: drawn
+    b = edge_die.beams[0]
+    kt_error = md.root_kt_error_rel(edge_die.root_fillet_um, b.width_um, b.thickness_um)
+    assert errors[:3] == pytest.approx([kt_error, kt_error + md.CLOSED_FORM_K_ERROR_REL,
+                                        kt_error + md.CLOSED_FORM_K_ERROR_REL])
+
+
+def test_a_die_margin_inside_its_model_error_is_undecided_not_passed(edge_die):
+    """The hard-stop row passed at +0.2 % (failure probability 0.00099 against 0.001) with
+    error est. n/a while the K_t the margin rests on was taken outside its fit (8 %): its
+    error is K_t's and the closed form's K's, and a margin inside it is undecided, in the
+    records, the text table and the die's check results."""
+    from tactcad.commands.die import die_requirement_checks
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+    from tactcad.studies.verification import matrix_table, undecided
+
+    b = edge_die.beams[0]
+    assert md.root_kt_outside(edge_die.root_fillet_um, b.width_um, b.thickness_um)
+    records = die_verification(edge_die)
+    stop = {r["requirement"]: r for r in records}["hard_stop"]
+    kt_error = md.root_kt_error_rel(edge_die.root_fillet_um, b.width_um, b.thickness_um)
+    assert kt_error == pytest.approx(2 * md.ROOT_KT_ERROR_REL)
+    assert stop["error_estimate_rel"] >= kt_error
+    assert 0 <= stop["margin_rel"] < stop["error_estimate_rel"]
+    assert stop["verdict"] == "undecided"
+    assert undecided(records) == ["hard_stop"]
+    assert "| UNDECIDED |" in matrix_table(records)
+    checks = {c.subject: c for c in die_requirement_checks(edge_die)}
+    assert checks["hard_stop"].status == "undecided" and checks["hard_stop"].passed
+
+
+def test_design_pastes_the_rating_with_its_error_room_and_verify_passes_it(tmp_path):
+    """The command line: design refuses the edge rating (inside its stops' model error),
+    pastes a lighter one; the die designed with it verifies every row PASS in the table
+    and in --json, each error stated (not n/a) and below its margin, none undecided."""
+    asked = ["design", "--jaw", "5", "--construction", "mems-die", "--kr-over-km", "3.24",
+             "--kobj-range", "0.02", "0.3", "--columns", "7"]
+    r = run_cli(*asked, "--full-scale-force", "0.00112", "--out", str(tmp_path / "edge"))
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    assert "--full-scale-force = 0.00112" in r.stderr and "model's 10 % error" in r.stderr
+    paste = r.stderr.split("to paste: ")[1].split(" (")[0].split()
+    assert paste[0] == "--full-scale-force" and float(paste[1]) < 0.00112
+    r = run_cli(*asked, *paste, "--out", str(tmp_path / "edge"))
+    assert r.returncode == 0, r.stderr
+    text = run_cli("verify", cwd=tmp_path / "edge")
+    assert text.returncode == 0, text.stderr
+    row = next(line for line in text.stdout.splitlines() if line.startswith("| hard_stop "))
+    assert "| PASS |" in row and "| n/a |" not in row
+    report = json.loads(run_cli("verify", "--json", cwd=tmp_path / "edge").stdout)
+    assert not report["undecided"]
+    for r in report["matrix"]:
+        assert r["verdict"] == "pass", r
+        assert r["margin_rel"] - (r.get("allowed_margin_rel") or 0.0) \
+            > r["error_estimate_rel"] > 0, r
+
+
+def test_a_die_with_a_comfortable_margin_still_passes(die):
+    """The stops and the rating clear their errors by far: pass, as before."""
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+
+    rows = {r["requirement"]: r for r in die_verification(die)}
+    for key in ("full_scale_force_N", "hard_stop", "kr_over_km", "kobj_resolution_rel"):
+        clearance = rows[key]["margin_rel"] - rows[key].get("allowed_margin_rel", 0.0)
+        assert clearance > rows[key]["error_estimate_rel"] > 0, rows[key]
+        assert rows[key]["verdict"] == "pass", rows[key]
+
+
+def test_every_die_row_carries_a_finite_error_of_its_model(edge_die):
+    """Every row, with the accuracy, post-height and grasp rows stated too, states a finite
+    error estimate; the stops' items each their own."""
+    from tactcad.commands.design import jaw_of
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.in_use.die_grasp import default_grasp_force_N
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+
+    plan = dataclasses.replace(edge_die, kobj_accuracy_rel=0.1,
+                               max_grasp_force_N=default_grasp_force_N(edge_die))
+    jaw = jaw_of("5")[0]
+    mount = die_mount(plan, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw)
+    records = die_verification(plan, mount)
+    assert {"full_scale_force_N", "kr_over_km", "hard_stop", "kobj_resolution_rel",
+            "max_grasp_force_N", "kobj_accuracy_rel", "tip_height_tolerance_mm"} <= \
+        {r["requirement"] for r in records}
+    for r in records:
+        e = r["error_estimate_rel"]
+        assert e is not None and math.isfinite(e) and e > 0, r
+    stop = next(r for r in records if r["requirement"] == "hard_stop")
+    assert all(math.isfinite(it["error_estimate_rel"]) for it in stop["items"])
+    bare = dataclasses.replace(edge_die, weibull=None)
+    rated = next(r for r in die_verification(bare) if r["requirement"] == "full_scale_force_N")
+    assert math.isfinite(rated["error_estimate_rel"]) and rated["verdict"] != "pass"
+
+
+def test_the_failure_probabilitys_error_is_the_strength_models_response_to_the_stress_error(die):
+    """A stress error e moves the die's P_f by (1 + e)^m - 1 (about m e at small P_f): what
+    the die's own Weibull model gives with every beam's force, so its roots' stress, raised by
+    e; the row's error in force is e, K_t's."""
+    from tactcad.products.silicon_die.studies.die_verification import die_verification
+
+    row = next(r for r in die_verification(die) if r["requirement"] == "full_scale_force_N")
+    e, m = row["error_estimate_rel"], die.weibull.modulus
+    b = die.beams[0]
+    assert e == pytest.approx(md.root_kt_error_rel(die.root_fillet_um, b.width_um,
+                                                   b.thickness_um))
+    p = die_failure_probability(die, die.rated_force_N)
+    raised = die_failure_probability(die, lambda beam: (1 + e) * die.rated_force_N(beam))
+    assert row["failure_probability_error_rel"] == pytest.approx(raised / p - 1.0, rel=1e-3)
+    assert row["failure_probability_error_rel"] == pytest.approx(m * e, rel=0.5)

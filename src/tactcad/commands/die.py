@@ -570,7 +570,8 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
 def die_requirement_checks(plan, mount=None) -> list:
     """The die's verification matrix (:func:`tactcad.products.silicon_die.commands.die_views.die_verification`)
     as check results, one per requirement: failed when its verdict is ``fail``; an
-    ``undecided`` one passes, marked undecided (a mean strength without a Weibull pair)."""
+    ``undecided`` one (a margin inside its model's error estimate, or a mean strength
+    without a Weibull pair) passes, marked undecided."""
     from tactcad.checks.check_result import CheckResult
     from tactcad.products.silicon_die.studies.die_verification import die_verification
     from tactcad.studies.verification import binding_text, margin_text, value_text

@@ -683,6 +683,62 @@ def root_kt_error_rel(radius_um: float, width_um: float, thickness_um: float) ->
     return ROOT_KT_ERROR_REL * (2.0 if outside else 1.0)
 
 
+def stress_at_force_error_rel(kt_error_rel: float) -> float:
+    """The relative error of a root's peak stress at a given force (the rating's failure
+    probability, its margin in force): K_t's, the force being stated.
+
+    The die's ``design`` keeps this room below the limit it judges, and ``verify``'s row
+    carries it, from this one rule.
+
+    Args:
+        kt_error_rel: K_t's error (:func:`root_kt_error_rel`, relative, >= 0).
+
+    Returns:
+        The relative error of the stress (and of the force at which a stress is reached).
+    """
+    return float(kt_error_rel)
+
+
+def stress_at_travel_error_rel(kt_error_rel: float) -> float:
+    """The relative error of a root's peak stress at a given post travel (a stop's force is
+    K x its travel): K_t's and the closed form's K (:data:`CLOSED_FORM_K_ERROR_REL`), added.
+
+    The die's ``design`` keeps this room below the stops' limits (a stop engaging before
+    its root breaks, the failure probability on the stops), and ``verify``'s rows carry it,
+    from this one rule.
+
+    Args:
+        kt_error_rel: K_t's error (:func:`root_kt_error_rel`, relative, >= 0).
+
+    Returns:
+        The relative error of the stress (and of the force at which a stress is reached).
+    """
+    return float(kt_error_rel) + CLOSED_FORM_K_ERROR_REL
+
+
+def k_moved_error_rel(plan, figure) -> float:
+    """The largest relative change of ``figure(plan)`` with K_r and K_m each moved by the
+    closed form's K error (:data:`CLOSED_FORM_K_ERROR_REL`), every sign combination (as the array's
+    :func:`tactcad.studies.verification.worst_and_error`).
+
+    Args:
+        plan: the die. figure: a function of a plan giving a relative figure (> 0).
+
+    Returns:
+        The relative error; inf where the figure or a moved one is not finite or not above 0.
+    """
+    from dataclasses import replace
+
+    base = figure(plan)
+    e = CLOSED_FORM_K_ERROR_REL
+    moved = [figure(replace(plan, k_r_N_per_mm=plan.k_r_N_per_mm * (1 + sr * e),
+                            k_m_N_per_mm=plan.k_m_N_per_mm * (1 + sm * e)))
+             for sr in (-1, 1) for sm in (-1, 1)]
+    if not all(math.isfinite(v) and v > 0 for v in (base, *moved)):
+        return math.inf
+    return max(abs(v / base - 1.0) for v in moved)
+
+
 def root_stress_concentration(radius_um: float, width_um: float, thickness_um: float) -> float:
     """K_t of a die beam's root fillets under its tip force, bent out of the wafer's plane:
     the peak stress on the fillets' top edge over the root's nominal 6 F L / (w t^2).
@@ -884,8 +940,9 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
             :data:`ROOT_FILLET_RANGE_UM`, or wider than the slot beside the chosen beam
             leaves), no stock device layer and beam width fit
             (naming what binds and the largest K_m the die holds), or the rating past the
-            roots' strength, the cavities' depth or the posts' height (naming a lighter
-            rating, :func:`_check_rating`).
+            roots' strength, the cavities' depth or the posts' height, or within a limit's
+            model error of it (:func:`rating_limit_errors`: verify could not pass it; naming
+            a lighter rating, :func:`_check_rating`).
     """
     if not (isinstance(columns, int) and 2 <= columns <= 50):
         raise DesignError("--columns", columns, "an integer 2 ... 50")
@@ -1013,7 +1070,11 @@ def die_plan(targets, room, *, columns: int = DEFAULT_COLUMNS,
                      f"{weibull.failure_probability_max:g} (m {weibull.modulus:g}, sigma_0 "
                      f"{weibull.characteristic_MPa:g} MPa on {weibull.reference_area_um2:g} "
                      f"um^2; {weibull.source}); the more stressed root's peak {root_MPa:.4g} "
-                     f"MPa (K_t {kt:.3g} x the nominal) at its beam's rated force"),
+                     f"MPa (K_t {kt:.3g} x the nominal) at its beam's rated force; each "
+                     f"limit met with its model's error to spare, as verify judges it (the "
+                     f"rating's by K_t's {100 * stress_at_force_error_rel(kt_error):.2g} %, "
+                     f"the stops' by K_t's and the closed form's K's "
+                     f"{100 * stress_at_travel_error_rel(kt_error):.2g} %, in force)"),
     }
     return DiePlan(name, stack, 2, columns, pitch_um, length, width, FRAME_UM, END_UM, w,
                    l_r, l_m, post, post_height, resistor, E,
@@ -1053,6 +1114,9 @@ class _Rating:
     #: with a pair: the factor on the rating at which the die's failure probability reaches
     #: the accepted one, every beam at its rated force, and every beam on its deepest stop
     weibull_scales: tuple[float, float] = (math.inf, math.inf)
+    #: the root fillets' K_t error (relative, :func:`root_kt_error_rel`): the model errors
+    #: of the limits (:func:`_rating_limit_errors`) follow from it
+    kt_error_rel: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -1158,7 +1222,8 @@ def _rating_of(pair: BeamPair, k_r: float, k_m: float, force_N: float, kobj_rang
                                             (l_m, w, t, peaks[1] / kt, kt, r)])
                        for peaks in (roots, on_stop))
     return _Rating(force_N, rated, max(roots), depths, max(engage),
-                   max(e / f for e, f in zip(engage, fracture)), strength, scales)
+                   max(e / f for e, f in zip(engage, fracture)), strength, scales,
+                   root_kt_error_rel(pair.root_fillet_um, w, t))
 
 
 def _rating_limits(rating: _Rating, post_um: float) -> list[tuple[float, str]]:
@@ -1206,27 +1271,63 @@ def _rating_limit_codes(rating: _Rating) -> list[str]:
     return [STRENGTH] * (1 if rating.strength is None else 2) + [STOP, STOP, STOP]
 
 
-def rating_limits(plan: DiePlan) -> list[tuple[float, str]]:
-    """The ratings at which each limit of ``plan``'s rating binds, with what binds (N,
-    words; :func:`_rating_limits` on the plan's beams): the largest rating the die allows is
-    the least of them."""
+def _rating_limit_errors(rating: _Rating) -> list[float]:
+    """The model error of each limit of :func:`_rating_limits`, in its order (relative, in
+    force), the ones ``verify`` judges the same limits by: the failure probability at the
+    rating :func:`stress_at_force_error_rel` (K_t's); the mean strength without a pair, the
+    failure probability on the stops and a stop engaging before its root breaks
+    :func:`stress_at_travel_error_rel` (K_t's and K's); the cavity's depth and the post's
+    height 0 (drawn sizes and the etch's stated tolerance, no model between)."""
+    travel = stress_at_travel_error_rel(rating.kt_error_rel)
+    strength = ([travel] if rating.strength is None
+                else [stress_at_force_error_rel(rating.kt_error_rel), travel])
+    return [*strength, travel, 0.0, 0.0]
+
+
+def _plan_rating(plan: DiePlan) -> _Rating:
+    """:class:`_Rating` of ``plan``'s beams at its rated force."""
     ref, meas = plan.beams[0], plan.beams[plan.columns]
     pair = BeamPair(0.0, -ref.thickness_um, ref.width_um, 0.0, plan.post_um, ref.length_um,
                     meas.length_um, plan.root_fillet_um)
     strength = None if plan.weibull is None else RatingStrength(plan.weibull, plan.columns)
-    rating = _rating_of(pair, plan.k_r_N_per_mm, plan.k_m_N_per_mm, plan.full_scale_force_N,
-                        plan.kobj_range_N_per_mm, strength)
-    return _rating_limits(rating, plan.post_um)
+    return _rating_of(pair, plan.k_r_N_per_mm, plan.k_m_N_per_mm, plan.full_scale_force_N,
+                      plan.kobj_range_N_per_mm, strength)
+
+
+def rating_limits(plan: DiePlan) -> list[tuple[float, str]]:
+    """The ratings at which each limit of ``plan``'s rating binds, with what binds (N,
+    words; :func:`_rating_limits` on the plan's beams): the largest rating the die allows is
+    the least of them."""
+    return _rating_limits(_plan_rating(plan), plan.post_um)
+
+
+def rating_limit_errors(plan: DiePlan) -> list[float]:
+    """The model error of each limit of :func:`rating_limits`, in its order.
+
+    Args:
+        plan: the die (:class:`DiePlan`).
+
+    Returns:
+        Each limit's relative error in force (:func:`_rating_limit_errors`): ``design``
+        accepts a rating only below limit / (1 + error), so that ``verify`` passes it.
+    """
+    return _rating_limit_errors(_plan_rating(plan))
 
 
 def _within_limits(rating: _Rating, post_um: float) -> bool:
-    return all(rating.force_N < limit for limit, _ in _rating_limits(rating, post_um))
+    """Whether ``rating`` is within every limit with its model's error to spare: F (1 + e)
+    below each limit (its margin, limit / F - 1, larger than e), so that ``verify`` passes
+    each row rather than leaving it undecided."""
+    return all(rating.force_N * (1.0 + error) < limit
+               for (limit, _), error in zip(_rating_limits(rating, post_um),
+                                            _rating_limit_errors(rating)))
 
 
 def _lighter_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating,
                     kobj_range) -> float | None:
-    """The rating to paste for ``pair`` when ``rating`` passes a limit: the largest rating
-    within every limit (:func:`_within_limits`), found by bisection (the limits grow with
+    """The rating to paste for ``pair`` when ``rating`` passes a limit (or comes within its
+    model's error of one): the largest rating within every limit by its error
+    (:func:`_within_limits`), found by bisection (the limits grow with
     the force, the cavities' depths and the posts' heights in steps), rounded down to three
     significant digits, so that it designs and 1 % more does not; None when none from
     :data:`LIGHTEST_PASTE_N` up designs (a limit that does not fall with the rating: the
@@ -1318,21 +1419,30 @@ def _passed_words(passed: list[tuple[float, str]], rating: _Rating) -> list[str]
 
 
 def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_range) -> None:
-    """Refuse a rating past any of :func:`_rating_limits`: the refusal names every limit
-    passed and pastes the rating below all of them (:func:`_lighter_rating`), or says that
-    no lighter rating helps.
+    """Refuse a rating past any of :func:`_rating_limits`, or within its model's error of
+    one (:func:`_rating_limit_errors`: verify would leave it undecided): the refusal names
+    every such limit and pastes the rating below all of them by their errors
+    (:func:`_lighter_rating`), or says that no lighter rating helps.
 
     Raises:
-        DesignError: ``--full-scale-force``, the rating past a limit.
+        DesignError: ``--full-scale-force``, the rating past a limit or within its error.
     """
     limits = _rating_limits(rating, pair.post_um)
+    errors = _rating_limit_errors(rating)
     force_N = rating.force_N
     passed = [(limit, why) for limit, why in limits if force_N >= limit]
-    if not passed:
+    # within a limit, but not by its model's error: verify could not pass it
+    close = [(limit, why, error) for (limit, why), error in zip(limits, errors)
+             if force_N < limit <= force_N * (1.0 + error)]
+    if not passed and not close:
         return
-    code = next(c for (limit, _), c in zip(limits, _rating_limit_codes(rating))
-                if force_N >= limit)
-    why = "past " + "; past ".join(_passed_words(passed, rating))
+    code = next(c for (limit, _), error, c in zip(limits, errors, _rating_limit_codes(rating))
+                if force_N * (1.0 + error) >= limit)
+    why = "; ".join([*(["past " + "; past ".join(_passed_words(passed, rating))]
+                       if passed else []),
+                     *(f"within its model's {100 * error:.2g} % error of {words}: a margin "
+                       f"of {100 * (limit / force_N - 1.0):+.2g} %, which verify could not "
+                       "pass" for limit, words, error in close)])
     if not _PASTE_LIGHTER.get():
         raise DesignError("--full-scale-force", force_N, "a lighter rating", why, limit=code)
     below = _lighter_rating(pair, k_r, k_m, rating, kobj_range)
@@ -1346,7 +1456,8 @@ def _check_rating(pair: BeamPair, k_r: float, k_m: float, rating: _Rating, kobj_
                                               "a stiffer K_obj range)"), limit=code)
     raise DesignError("--full-scale-force", force_N, f"at most {below:g} N", why, limit=code,
                       alternatives=[{"option": f"--full-scale-force {below:g}",
-                                     "words": "a lighter rating, below every limit" + (
+                                     "words": "a lighter rating, below every limit by its model's "
+                                              "error" + (
                                          " (strength at the mean of etched bars; its failure "
                                          "probability needs a Weibull pair)"
                                          if rating.strength is None else "")}])

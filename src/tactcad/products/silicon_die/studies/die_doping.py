@@ -78,7 +78,7 @@ def chosen_implant_dose(doses: tuple[float, ...] = STOCK_DOSES_PER_CM2) -> tuple
 def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kwargs):
     """:func:`tactcad.products.silicon_die.design.mems_die.die_plan` with the implant dose of
     :func:`chosen_implant_dose` (and its reason), refused where its read-out cannot resolve
-    K_obj to ``kobj_resolution_rel`` (default
+    K_obj, with its model's error to spare (:func:`resolves`), to ``kobj_resolution_rel`` (default
     :data:`~tactcad.products.silicon_die.design.mems_die.DEFAULT_KOBJ_RESOLUTION_REL`) anywhere in the range at
     the rated force (the read-out noise term of the die's budget,
     :func:`tactcad.products.silicon_die.in_use.die_budget.readout_noise_term`); ``kwargs`` as ``die_plan`` takes
@@ -94,10 +94,30 @@ def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kw
 
     target = DEFAULT_KOBJ_RESOLUTION_REL if kobj_resolution_rel is None else kobj_resolution_rel
     plan = die_plan_at(targets, room, targets.full_scale_force_N, kwargs)
-    worst = worst_readout_error_rel(plan)
-    if worst > target:
-        raise _too_light(targets, room, plan, worst, target, kwargs)
+    if not resolves(plan, target):
+        raise _too_light(targets, room, plan, worst_readout_error_rel(plan), target, kwargs)
     return dataclasses.replace(plan, kobj_resolution_rel=float(target))
+
+
+def resolves(plan, target: float) -> bool:
+    """Whether ``plan``'s read-out resolves K_obj to ``target`` with its model's error to
+    spare: its worst read-out error (:func:`worst_readout_error_rel`) below the target by
+    more than the error ``verify``'s ``kobj_resolution_rel`` row carries
+    (:func:`resolution_error_rel`), so that the row passes rather than stays undecided.
+
+    Args:
+        plan: the die. target: the K_obj resolution asked (relative, > 0).
+
+    Returns:
+        True when target / worst - 1 exceeds the error.
+    """
+    import math
+
+    worst = worst_readout_error_rel(plan)
+    if not (math.isfinite(worst) and worst > 0):
+        return worst == 0
+    error = resolution_error_rel(plan)
+    return math.isfinite(error) and target / worst - 1.0 > error
 
 
 def die_plan_at(targets, room, force_N: float, kwargs):
@@ -127,6 +147,24 @@ def worst_readout_error_rel(plan) -> float:
                                            np.array([lo, math.sqrt(lo * hi), hi]))))
 
 
+def resolution_error_rel(plan) -> float:
+    """The error of the die's worst read-out K_obj error (:func:`worst_readout_error_rel`):
+    its largest change with each K moved by the closed form's error
+    (:func:`tactcad.products.silicon_die.design.mems_die.k_moved_error_rel`), the error
+    ``verify``'s ``kobj_resolution_rel`` row carries and the die's design keeps room for
+    (:func:`resolves`).
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+
+    Returns:
+        The relative error (inf where the read-out is unreadable).
+    """
+    from tactcad.products.silicon_die.design.mems_die import k_moved_error_rel
+
+    return k_moved_error_rel(plan, worst_readout_error_rel)
+
+
 def _wider_ratio(targets, room, target: float, kwargs) -> float | None:
     """The least of 1.5, 2, 3, 5 and 10 times ``targets``' K_r / K_m (two digits) whose die
     designs and resolves K_obj to ``target`` at the same rating, or None."""
@@ -139,7 +177,7 @@ def _wider_ratio(targets, room, target: float, kwargs) -> float | None:
                                targets.full_scale_force_N, kwargs)
         except DesignError:
             continue
-        if worst_readout_error_rel(plan) <= target:
+        if resolves(plan, target):
             return ratio
     return None
 
@@ -147,7 +185,8 @@ def _wider_ratio(targets, room, target: float, kwargs) -> float | None:
 def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> DesignError:
     """The refusal of a rating too light to resolve K_obj: the read-out's error goes as one
     over the rating (the deflections as F, the force resolution fixed), so the rating that
-    resolves it is F x worst / target (10 % more, two digits up), pasted where it designs."""
+    resolves it is F x worst / target (10 % more, two digits up), pasted where it designs
+    and resolves it with its model's error to spare (:func:`resolves`)."""
     from tactcad.vocabulary.binding_limits import RESOLUTION
 
     import dataclasses
@@ -156,20 +195,24 @@ def _too_light(targets, room, plan, worst: float, target: float, kwargs) -> Desi
     force = targets.full_scale_force_N
     alternatives, heavier, error = [], force, worst
     for _ in range(8):  # eq. 3 amplifies the noise unevenly: a few steps of F x error / target
-        scale = error / target if math.isfinite(error) else 1e3
+        # at least 10 % heavier: a read-out within its error of the target needs more
+        scale = max(error / target, 1.0) if math.isfinite(error) else 1e3
         heavier = float(f"{1.1 * heavier * scale:.2g}")
         try:
             heavy = die_plan_at(targets, room, heavier, kwargs)
         except DesignError:
             break  # heavier than the die's other limits allow
         error = worst_readout_error_rel(heavy)
-        if error <= target:
+        if resolves(heavy, target):
             alternatives = [{"option": f"--full-scale-force {heavier:g}",
                              "words": f"a rating whose read-out resolves K_obj to "
                                       f"{100 * target:g} %"}]
             break
     read = ("leaves K_obj unreadable" if not math.isfinite(worst) else
-            f"moves K_obj by {100 * worst:.3g} %")
+            f"moves K_obj by {100 * worst:.3g} %"
+            + ("" if worst > target else
+               f", within its model's error ({100 * resolution_error_rel(plan):.2g} %) of "
+               "the target, which verify could not pass"))
     if not alternatives:  # no rating helps: R hardly moves with K_obj at so close a ratio
         wider = _wider_ratio(targets, room, target, kwargs)
         if wider is not None:

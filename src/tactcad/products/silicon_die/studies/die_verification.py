@@ -2,17 +2,114 @@
 (:func:`tactcad.studies.verification.verification_matrix`), at the closed form, for
 ``tactcad verify`` on a die's file and the die's requirements check group.
 
-Units: N, um, MPa.
+Every row carries the error estimate of the model that predicts it (``error_estimate_rel``,
+relative, in the unit of its margin) and is judged as the array's rows are
+(:func:`tactcad.mechanics.verdicts.verdict`): a margin inside its error is ``undecided``,
+not passed. The estimates:
+
+* the root fillets' K_t: :func:`tactcad.products.silicon_die.design.mems_die.root_kt_error_rel`
+  (4 % inside its fit, 8 % outside it, as the die's range warning states);
+* each beam's K: :data:`tactcad.products.silicon_die.design.mems_die.CLOSED_FORM_K_ERROR_REL`
+  of the fem3d level; a root's stress at a travel (a stop's force, K x travel) carries both;
+* a failure probability: the die's Weibull model
+  (:mod:`tactcad.products.silicon_die.mechanics.die_strength`, P_f = 1 - exp(-(A_eff / A_0)
+  (sigma / sigma_0)^m)) moves by (1 + e)^m - 1 (about m e at small P_f) for a stress error
+  e, and the force at which it reaches the accepted probability by e: the margin is in
+  force, so the row's error is e (``failure_probability_error_rel`` gives the P_f's);
+* the K_obj read-out and budget figures: their largest change with each K moved by its
+  error, every sign combination (as the array's
+  :func:`tactcad.studies.verification.worst_and_error`).
+
+Units: N, um, MPa; errors and margins relative.
 """
 
 from __future__ import annotations
 
 import math
 
+# the K-moved error and the read-out's error live with the design that keeps their room;
+# named here too, as the rows carry them
+from tactcad.products.silicon_die.design.mems_die import k_moved_error_rel  # noqa: F401
+from tactcad.products.silicon_die.studies.die_doping import resolution_error_rel  # noqa: F401
+
+
+def kt_error_rel(plan) -> float:
+    """The largest error of the root fillets' K_t over the die's beams
+    (:func:`tactcad.products.silicon_die.design.mems_die.root_kt_error_rel`: twice the fit's
+    outside its (r / t, w / t) range).
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+
+    Returns:
+        The relative error of a root's peak stress at a given force.
+    """
+    from tactcad.products.silicon_die.design.mems_die import root_kt_error_rel
+
+    return max(root_kt_error_rel(plan.root_fillet_um, b.width_um, b.thickness_um)
+               for b in plan.beams)
+
+
+def travel_stress_error_rel(plan) -> float:
+    """The relative error of a root's peak stress at a given post travel: K_t's
+    (:func:`kt_error_rel`) and the closed form's K (the force the travel takes, K x travel;
+    :data:`tactcad.products.silicon_die.design.mems_die.CLOSED_FORM_K_ERROR_REL`), added
+    (:func:`tactcad.products.silicon_die.design.mems_die.stress_at_travel_error_rel`, the
+    rule the die's design keeps room for).
+
+    Args:
+        plan: the die.
+
+    Returns:
+        The relative error.
+    """
+    from tactcad.products.silicon_die.design.mems_die import stress_at_travel_error_rel
+
+    return stress_at_travel_error_rel(kt_error_rel(plan))
+
+
+def force_stress_error_rel(plan) -> float:
+    """The relative error of a root's peak stress at a given force (the rating's failure
+    probability, its margin in force): K_t's
+    (:func:`tactcad.products.silicon_die.design.mems_die.stress_at_force_error_rel`, the
+    rule the die's design keeps room for).
+
+    Args:
+        plan: the die.
+
+    Returns:
+        The relative error.
+    """
+    from tactcad.products.silicon_die.design.mems_die import stress_at_force_error_rel
+
+    return stress_at_force_error_rel(kt_error_rel(plan))
+
+
+def weibull_probability_error_rel(stress_error_rel: float, modulus: float) -> float:
+    """The relative change of a small failure probability for a stress error e under the
+    die's Weibull model (:mod:`tactcad.products.silicon_die.mechanics.die_strength`: the
+    risk goes as sigma^m, so P_f by (1 + e)^m - 1, about m e).
+
+    Args:
+        stress_error_rel: e (relative). modulus: the Weibull modulus m (> 0).
+
+    Returns:
+        The relative error of P_f.
+    """
+    return (1.0 + stress_error_rel) ** modulus - 1.0
+
+
+def _finite_or_none(x: float) -> float | None:
+    return float(x) if x is not None and math.isfinite(x) else None
+
 
 def die_verification(plan, mount=None) -> list[dict]:
     """The die's verification matrix, one record per requirement in the array's keys
     (:func:`tactcad.studies.verification.verification_matrix`), at the closed form:
+
+    Each record states ``error_estimate_rel`` (finite; see the module's words) and a
+    ``verdict`` by :func:`tactcad.mechanics.verdicts.verdict`: a margin inside its error is
+    ``undecided``.
 
     * ``full_scale_force_N``: the rated force against the largest rating the die's limits
       allow (:func:`tactcad.products.silicon_die.design.mems_die.rating_limits`: each root at its own beam's
@@ -31,7 +128,17 @@ def die_verification(plan, mount=None) -> list[dict]:
       travel at which its root reaches the mean strength (an overload rests on the floor
       before the beam breaks, and before the post sinks to the face (the posts stand proud);
       margin: the worse row's fracture travel or post height over its deepest engagement,
-      less one.
+      less one; each of these (and with a Weibull pair the die's failure probability on
+      its stops) an item of ``items``, judged on its own margin and error, the record the
+      worst item's (:func:`tactcad.mechanics.verdicts.deciding_item`).
+
+    Args:
+        plan: the die (:class:`~tactcad.products.silicon_die.design.mems_die.DiePlan`).
+        mount: the die's mount in its jaw, for the grasp row (None: no grasp row).
+
+    Returns:
+        The records (requirement, target, predicted, error_estimate_rel, margin_rel, model,
+        verdict, binding_words, ...).
     """
     from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
                                                               fracture_travel_um)
@@ -70,21 +177,39 @@ def _accuracy_rows(plan) -> list[dict]:
     from tactcad.products.silicon_die.in_use.die_budget import die_budget
 
     budget = die_budget(plan)
-    return [accuracy_row(plan, float(max(budget.total_rel))), post_height_row(budget)]
+    error = budget_error_rel(plan)
+    return [accuracy_row(plan, float(max(budget.total_rel)), error),
+            post_height_row(budget, error)]
 
 
-def post_height_row(budget) -> dict:
+def budget_error_rel(plan) -> float:
+    """The error of the die's K_obj budget's worst root sum square: its largest change with
+    each K moved by the closed form's error (:func:`k_moved_error_rel`).
+
+    Args:
+        plan: the die.
+
+    Returns:
+        The relative error (inf where the budget is unreadable).
+    """
+    return k_moved_error_rel(plan, worst_budget_rel)
+
+
+def post_height_row(budget, error_rel: float = 0.0) -> dict:
     """``tip_height_tolerance_mm`` of a die: the posts' height tolerance the drawing holds
     against the one the K_obj budget's accuracy needs
     (:func:`tactcad.products.silicon_die.in_use.die_budget.post_height_drawing`). It passes
     when the process's tolerance holds the allowance (margin allowance / drawn - 1), or when
     the drawing names the zeroing on an optical flat and the mismatch it leaves fits the
     twice-the-allowance mismatch the accuracy permits (margin 2 allowance / residual - 1);
-    it fails where the other terms leave no room.
+    it fails where the other terms leave no room. A margin inside ``error_rel`` (the
+    allowance scales with the budget's room) is undecided.
 
     Args:
         budget: the die's :class:`~tactcad.products.silicon_die.in_use.die_budget.DieBudget`,
             its ``kobj_accuracy_rel`` stated.
+        error_rel: the budget's error (:func:`budget_error_rel`, relative); 0 judges the
+            nominal margin.
 
     Returns:
         The verification record.
@@ -93,7 +218,10 @@ def post_height_row(budget) -> dict:
     from tactcad.studies.verification import TIP_HEIGHT_REQUIREMENT
 
     tip = post_height_drawing(budget)
-    base = {"requirement": TIP_HEIGHT_REQUIREMENT, "error_estimate_rel": None,
+    from tactcad.mechanics.verdicts import verdict
+
+    error = _finite_or_none(error_rel)
+    base = {"requirement": TIP_HEIGHT_REQUIREMENT, "error_estimate_rel": error,
             "model": "closed-form", "tip_height": tip.as_json(),
             "basis": "post height: tolerance drawn vs tolerance needed (the die's K_obj "
                      "budget, +/- mm); with the zeroing, half the mismatch it leaves"}
@@ -103,12 +231,13 @@ def post_height_row(budget) -> dict:
                 "verdict": "fail",
                 "binding_words": "no post tolerance fits: the other terms fill the accuracy"}
     if tip.holds_allowance:
+        margin = needed / tip.drawn_mm - 1.0
         return {**base, "target": needed, "predicted": tip.drawn_mm,
-                "margin_rel": needed / tip.drawn_mm - 1.0, "verdict": "pass",
+                "margin_rel": margin, "verdict": verdict(margin, error, 0.0, True),
                 "binding_words": f"the posts' +/-{1e3 * tip.drawn_mm:.3g} um holds it"}
+    margin = 2 * needed / tip.residual_mm - 1.0
     return {**base, "target": needed, "predicted": tip.residual_mm / 2,
-            "margin_rel": 2 * needed / tip.residual_mm - 1.0,
-            "verdict": "pass" if tip.residual_fits else "fail",
+            "margin_rel": margin, "verdict": verdict(margin, error, 0.0, tip.residual_fits),
             "binding_words": f"zeroed on an optical flat: {1e3 * tip.residual_mm:.2g} um "
                              f"mismatch left; the posts' process holds +/-"
                              f"{1e3 * tip.drawn_mm:.3g} um, +/-{1e3 * needed:.3g} um needed"}
@@ -123,13 +252,20 @@ def _grasp_row(plan, mount) -> dict:
     (:func:`grasp_force_columns`; the deciding beam's force and breaking force are
     ``element_force_N`` and ``overload_limit_N``). Undecided, not passed, where a post rests
     on its stop (the posts' and the cavity floor's strength under it is not judged) or the
-    die's face meets the tissue (past the punch model)."""
+    die's face meets the tissue (past the punch model). Its error: the breaking force's
+    K_t error (:func:`kt_error_rel`) and the beam's force on its spring, the closed form's K
+    and the tissue model's in quadrature (as the array's
+    :func:`tactcad.studies.verification.grasp_error_rel`), added; a margin inside it is
+    undecided, past it on the short side failed."""
     from tactcad.errors import DesignError
+    from tactcad.mechanics.verdicts import verdict
+    from tactcad.products.silicon_die.design.mems_die import CLOSED_FORM_K_ERROR_REL
     from tactcad.products.silicon_die.in_use.die_grasp import grasp_at_force
-    from tactcad.studies.verification import grasp_force_columns
+    from tactcad.studies.verification import TISSUE_MODEL_ERROR_REL, grasp_force_columns
 
     target = plan.max_grasp_force_N
-    base = {"requirement": "max_grasp_force_N", "target": target, "error_estimate_rel": None,
+    error = kt_error_rel(plan) + math.hypot(CLOSED_FORM_K_ERROR_REL, TISSUE_MODEL_ERROR_REL)
+    base = {"requirement": "max_grasp_force_N", "target": target, "error_estimate_rel": error,
             "model": "closed-form"}
     try:
         result = grasp_at_force(plan, mount, target)
@@ -150,10 +286,11 @@ def _grasp_row(plan, mount) -> dict:
     # a stop's load and the face in the tissue lie outside what the row judges: a grasp
     # the beams survive is then undecided, not passed
     unjudged = bool(over == [] and (stopped or face))
+    judged = verdict(margin, error, 0.0, not over)
     return {**base, **grasp_force_columns(target, margin, worst["on_stop"]),
             "element_force_N": worst["element_force_N"],
             "overload_limit_N": worst["overload_limit_N"],
-            "verdict": "fail" if over else "undecided" if unjudged else "pass",
+            "verdict": "undecided" if unjudged and judged == "pass" else judged,
             "binding_words": f"beam {worst['site']}: {1e3 * worst['element_force_N']:.3g} mN "
                              f"on its spring at the {target:g} N grasp (jaw at "
                              f"{result.angle_deg:.3g} degrees), breaking force "
@@ -187,46 +324,56 @@ def worst_budget_rel(plan) -> float:
     return float(max(die_budget(plan).total_rel))
 
 
-def accuracy_row(plan, worst: float | None = None) -> dict:
+def accuracy_row(plan, worst: float | None = None, error: float | None = None) -> dict:
     """``kobj_accuracy_rel``: the die's K_obj budget's worst root sum square over the range
-    against the stated accuracy; fails where it is larger.
+    against the stated accuracy; fails where it is larger by more than its error
+    (:func:`budget_error_rel`), undecided within it.
 
     Args:
         plan: the die, its ``kobj_accuracy_rel`` stated (relative).
         worst: :func:`worst_budget_rel` of the plan when already computed.
+        error: :func:`budget_error_rel` of the plan when already computed.
 
     Returns:
         The verification record (requirement, target, predicted, margin_rel, verdict, ...).
     """
+    from tactcad.mechanics.verdicts import verdict
+
     worst = worst_budget_rel(plan) if worst is None else worst
+    error = _finite_or_none(budget_error_rel(plan) if error is None else error)
     target = plan.kobj_accuracy_rel
     readable = math.isfinite(worst) and worst > 0
+    margin = target / worst - 1.0 if readable else None
     return {"requirement": "kobj_accuracy_rel", "target": target, "predicted": worst,
-            "error_estimate_rel": None,
-            "margin_rel": target / worst - 1.0 if readable else None,
-            "model": "closed-form", "verdict": "pass" if worst <= target else "fail",
+            "error_estimate_rel": error, "margin_rel": margin,
+            "model": "closed-form", "verdict": verdict(margin, error, 0.0, worst <= target),
             "binding_words": "the root sum square of the die's K_obj budget (tactcad budget: "
                              "read-out noise, device layer, cavity alignment, temperature, "
                              "resistor zero drift, the coupled inversion's residue and the "
                              "posts' mismatch after zeroing on a flat), worst "
                              "over the K_obj range, each term before calibration (an upper "
-                             "bound)"}
+                             "bound); its error: the largest change with each K moved by "
+                             "the closed form's K error"}
 
 
 def _resolution_row(plan) -> dict:
     """``kobj_resolution_rel``: the largest K_obj error the bridges' noise leaves over the
-    range at the rated force against the die's requirement."""
+    range at the rated force against the die's requirement; its error the largest change
+    with each K moved by the closed form's K error (:func:`k_moved_error_rel`)."""
+    from tactcad.mechanics.verdicts import verdict
     from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
 
     worst = worst_readout_error_rel(plan)
+    error = _finite_or_none(resolution_error_rel(plan))
+    margin = (plan.kobj_resolution_rel / worst - 1.0
+              if math.isfinite(worst) and worst > 0 else None)
     return {"requirement": "kobj_resolution_rel", "target": plan.kobj_resolution_rel,
-            "predicted": worst, "error_estimate_rel": None,
-            "margin_rel": plan.kobj_resolution_rel / worst - 1.0
-            if math.isfinite(worst) and worst > 0 else None,
+            "predicted": worst, "error_estimate_rel": error, "margin_rel": margin,
             "model": "closed-form",
-            "verdict": "pass" if worst <= plan.kobj_resolution_rel else "fail",
+            "verdict": verdict(margin, error, 0.0, worst <= plan.kobj_resolution_rel),
             "binding_words": "the read-out noise term of the budget, worst over the K_obj "
-                             "range, the reference at the rated force"}
+                             "range, the reference at the rated force (its error: each K "
+                             "moved by the closed form's K error)"}
 
 
 def _rated_row(plan) -> dict:
@@ -234,14 +381,19 @@ def _rated_row(plan) -> dict:
     limits allow (:func:`tactcad.products.silicon_die.design.mems_die.rating_limits`: the more stressed root at the
     etched bars' mean strength, a stop engaging before its root breaks, the cavities' depth,
     the posts' height): failed at or past it, else undecided (a mean strength without its
-    Weibull modulus gives no failure probability)."""
+    Weibull modulus gives no failure probability); its error K_t's and the K's, added
+    (:func:`travel_stress_error_rel`), past which it fails."""
+    from tactcad.mechanics.verdicts import verdict
     from tactcad.products.silicon_die.design.mems_die import BOSCH_STRENGTH_SOURCE, rating_limits
 
     largest, binds = min(rating_limits(plan), key=lambda lw: lw[0])
+    error = travel_stress_error_rel(plan)  # the worst of the limits' (K_t and K)
+    margin = largest / plan.full_scale_force_N - 1.0
+    judged = verdict(margin, error, 0.0, largest > plan.full_scale_force_N)
     return {"requirement": "full_scale_force_N", "target": plan.full_scale_force_N,
-            "predicted": largest, "error_estimate_rel": None,
-            "margin_rel": largest / plan.full_scale_force_N - 1.0, "model": "closed-form",
-            "verdict": "fail" if largest <= plan.full_scale_force_N else "undecided",
+            "predicted": largest, "error_estimate_rel": error,
+            "margin_rel": margin, "model": "closed-form",
+            "verdict": "fail" if judged == "fail" else "undecided",
             "binding_words": f"the largest rating the die's limits allow: {binds}; no Weibull "
                              f"modulus, so no failure probability ({BOSCH_STRENGTH_SOURCE})"}
 
@@ -249,38 +401,61 @@ def _rated_row(plan) -> dict:
 def _weibull_rated_row(plan) -> dict:
     """``full_scale_force_N`` with the plan's Weibull pair (the lab's, or the design
     default's): the die's failure probability with the rated force on every beam against
-    the largest the pair accepts."""
+    the largest the pair accepts. Its error: the root's stress at the rated force is K_t's
+    (:func:`kt_error_rel`), e; the force at which P_f reaches the accepted probability moves
+    by e, P_f itself by (1 + e)^m - 1 (:func:`weibull_probability_error_rel`)."""
+    from tactcad.mechanics.verdicts import verdict
     from tactcad.products.silicon_die.mechanics.die_strength import (die_failure_probability,
                                                 force_scale_at_probability)
 
     pair = plan.weibull
     p_f = die_failure_probability(plan, plan.rated_force_N)
     scale = force_scale_at_probability(plan, plan.rated_force_N, pair.failure_probability_max)
+    error = force_stress_error_rel(plan)
+    p_error = weibull_probability_error_rel(error, pair.modulus)
     return {"requirement": "full_scale_force_N",
             "target": f"failure probability <= {pair.failure_probability_max:g}",
-            "predicted": p_f, "error_estimate_rel": None,
+            "predicted": p_f, "error_estimate_rel": error,
+            "failure_probability_error_rel": p_error,
             "margin_rel": scale - 1.0, "model": "closed-form",
-            "verdict": "pass" if p_f <= pair.failure_probability_max else "fail",
+            "verdict": verdict(scale - 1.0, error, 0.0, p_f <= pair.failure_probability_max),
             "binding_words": f"the die's failure probability with every beam at its rated "
                              f"force, {pair.whose} (m {pair.modulus:g}, "
                              f"sigma_0 {pair.characteristic_MPa:g} MPa on "
                              f"{pair.reference_area_um2:g} um^2; {pair.source}); it reaches "
                              f"{pair.failure_probability_max:g} at {scale:.3g} x the rating "
                              f"({scale * plan.full_scale_force_N:.3g} N): the margin is in "
-                             "force"}
+                             f"force, its error K_t's {100 * error:.2g} % (P_f's "
+                             f"{100 * p_error:.2g} %, (1 + e)^m - 1)"}
 
 
 def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
-    """The ``hard_stop`` record of :func:`die_verification`: each row's cavity floor."""
-    from tactcad.products.silicon_die.design.mems_die import STOP_MULTIPLE
+    """The ``hard_stop`` record of :func:`die_verification`: each row's cavity floor, one
+    item per check (``items``), each judged on its own margin and error
+    (:func:`tactcad.mechanics.verdicts.judged`), the record the worst item's
+    (:func:`tactcad.mechanics.verdicts.deciding_item`). The errors: the rated travel (force
+    over K) and the post's travel at engagement (the closed form's deflected shape) the
+    closed form's K error; the travel at which a root breaks and the die's failure
+    probability on its stops (in force) K_t's and K's (:func:`travel_stress_error_rel`)."""
+    from tactcad.mechanics.verdicts import deciding_item, judged
+    from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
+                                                              STOP_MULTIPLE)
     from tactcad.products.silicon_die.vocabulary.soi_process import CAVITY_DEPTH_TOLERANCE_REL
 
-    words, margins, ok = [], [], True
+    stress_error = travel_stress_error_rel(plan)
+    words, items = [], []
     for beam in rows:
         _, shallow, deep = plan.stop_engagement_um(beam)
         rated, breaks = plan.rated_tip_um(beam), fracture_travel_um[beam.role]
-        ok = ok and rated < shallow and deep < min(breaks, plan.post_height_um)
-        margins.append(min(breaks, plan.post_height_um) / deep - 1.0)
+        items += [judged({"item": f"{beam.role}: engages past the rated travel",
+                          "margin_rel": shallow / rated - 1.0,
+                          "error_estimate_rel": CLOSED_FORM_K_ERROR_REL}),
+                  judged({"item": f"{beam.role}: engages before the root breaks",
+                          "margin_rel": breaks / deep - 1.0,
+                          "error_estimate_rel": stress_error}),
+                  judged({"item": f"{beam.role}: the posts still proud on the stop",
+                          "margin_rel": plan.post_height_um / deep - 1.0,
+                          "error_estimate_rel": CLOSED_FORM_K_ERROR_REL})]
         words.append(f"{beam.role}: cavity {plan.cavity_depth_of(beam):g} um, engages at "
                      f"{shallow:.3g} ... {deep:.3g} um of post travel (rated {rated:.3g} um, "
                      f"breaks at {breaks:.3g} um: its root fillets' peak, K_t "
@@ -298,18 +473,27 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
 
         p_stop = die_failure_probability(plan, on_stop)
         accepted = plan.weibull.failure_probability_max
-        ok = ok and p_stop <= accepted
         scale = force_scale_at_probability(plan, on_stop, accepted)
-        margins.append(scale - 1.0)  # in force, as the travels' margins
+        p_error = weibull_probability_error_rel(stress_error, plan.weibull.modulus)
+        items.append(judged({"item": "the die's failure probability on its stops",
+                             "margin_rel": scale - 1.0,  # in force, as the travels' margins
+                             "error_estimate_rel": stress_error,
+                             "failure_probability_error_rel": p_error}))
         words.append(f"the die's failure probability with every beam on its deepest stop "
                      f"{p_stop:.3g} (accepted up to {accepted:g}, {plan.weibull.whose}; "
-                     f"reached at {scale:.3g} x the stops' forces)")
+                     f"reached at {scale:.3g} x the stops' forces; its error "
+                     f"{100 * stress_error:.2g} % in force, the stress's, {100 * p_error:.2g} "
+                     "% in P_f, (1 + e)^m - 1)")
+    worst = deciding_item(items)
     return {"requirement": "hard_stop",
             "target": f"engages past the rated travel (at {STOP_MULTIPLE:g} x) and before the "
                       "root breaks",
-            "predicted": "; ".join(words), "error_estimate_rel": None,
-            "margin_rel": min(margins), "model": "closed-form",
-            "verdict": "pass" if ok else "fail",
+            "predicted": "; ".join(words), "error_estimate_rel": worst["error_estimate_rel"],
+            "margin_rel": worst["margin_rel"], "model": "closed-form",
+            "verdict": worst["verdict"], "items": items, "binding_item": worst["item"],
             "binding_words": f"each row's cavity floor under its beams' free ends (the depth "
                              f"+-{100 * CAVITY_DEPTH_TOLERANCE_REL:g} %, the root's peak on its "
-                             "fillets at the mean strength of etched bars)"}
+                             "fillets at the mean strength of etched bars); deciding: "
+                             f"{worst['item']} (error {100 * worst['error_estimate_rel']:.2g} %:"
+                             f" K_t's {100 * kt_error_rel(plan):.2g} %, the closed form's K "
+                             f"{100 * CLOSED_FORM_K_ERROR_REL:.2g} %)"}
