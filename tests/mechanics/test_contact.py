@@ -164,3 +164,45 @@ def test_the_block_cache_keeps_within_its_budget():
     assert cache.bytes <= 3 * 800 and cache.get(0) is None and cache.get(4)[0] == 4.0
     with pytest.raises(ValueError):
         cache.get(4)[0] = 1.0  # kept blocks are read-only
+
+
+def test_the_punch_solve_runs_its_dense_algebra_on_one_blas_thread(monkeypatch):
+    """The collocation solve runs with BLAS on one thread (a second one's idle spinning
+    tripled a design search's CPU time on a shared two-core machine), the process's thread
+    count is restored after it, and the compliances are those of a threaded solve to
+    round-off."""
+    import contextlib
+
+    from tactcad.mechanics import contact
+    from tactcad.mechanics.blas_threads import blas_thread_counts, blas_threads
+    from tactcad.mechanics.contact import solve_punches
+
+    with blas_threads(2):
+        if not blas_thread_counts() or set(blas_thread_counts()) != {2}:
+            pytest.skip("no OpenBLAS whose thread count can be set to 2")
+        seen = []
+        solve = contact.solve_by_symmetry
+
+        def watched(*args, **kwargs):
+            seen.append(blas_thread_counts())
+            return solve(*args, **kwargs)
+
+        monkeypatch.setattr(contact, "solve_by_symmetry", watched)
+        punches, sample = _two_rows(3), Sample(1.0, 0.5)
+        one = solve_punches(punches, sample, 1.0, 8)
+        assert seen and all(set(counts) == {1} for counts in seen)
+        assert set(blas_thread_counts()) == {2}  # restored
+        monkeypatch.setattr(contact, "single_threaded_blas", contextlib.nullcontext)
+        threaded = solve_punches(punches, sample, 1.0, 8)
+        assert set(seen[-1]) == {2}
+    c = threaded.compliance_mm_per_N
+    assert np.allclose(one.compliance_mm_per_N, c, rtol=1e-12, atol=1e-14 * abs(c).max())
+
+
+@pytest.mark.parametrize("count", [0, -1, 1.5, True, "2"])
+def test_a_blas_thread_count_outside_its_range_is_refused_by_name(count):
+    from tactcad.mechanics.blas_threads import blas_threads
+
+    with pytest.raises(ValueError, match=r"count = .*allowed an integer >= 1"):
+        with blas_threads(count):
+            pass

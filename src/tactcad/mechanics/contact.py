@@ -52,6 +52,7 @@ from typing import Sequence
 
 import numpy as np
 
+from tactcad.mechanics.blas_threads import single_threaded_blas
 from tactcad.store import kept_per_process, kept_result
 from tactcad.errors import TactcadError
 
@@ -790,6 +791,11 @@ def solve_punches(punches, sample: Sample, cell_mm: float = DEFAULT_CELL_MM,
     Collocation: A p = B u, with A the influence matrix, B the cell-to-punch
     incidence and u the punch displacements; forces F = Bᵀ diag(area) p.
 
+    The dense algebra runs with BLAS on one thread
+    (:func:`~tactcad.mechanics.blas_threads.single_threaded_blas`): its systems of a few
+    thousand cells gain little from a second thread, whose idle spinning cost a design
+    search's contact solves about three times the CPU time on a shared two-core machine.
+
     Args:
         punches: sequence of :class:`Punch` (m >= 1), non-overlapping faces.
         sample: :class:`Sample`.
@@ -811,10 +817,12 @@ def solve_punches(punches, sample: Sample, cell_mm: float = DEFAULT_CELL_MM,
     a = influence_matrix(mesh, sample, targets)
     incidence = np.zeros((len(mesh.punch), len(punches)))
     incidence[np.arange(len(mesh.punch)), mesh.punch] = 1.0
-    pressure = solve_by_symmetry(a, incidence, maps, rows)
-    stiffness = incidence.T @ (mesh.area_mm2[:, None] * pressure)
-    stiffness = 0.5 * (stiffness + stiffness.T)  # symmetric by reciprocity; remove round-off
-    return PunchSolution(stiffness, np.linalg.inv(stiffness), pressure, mesh)
+    with single_threaded_blas():
+        pressure = solve_by_symmetry(a, incidence, maps, rows)
+        stiffness = incidence.T @ (mesh.area_mm2[:, None] * pressure)
+        stiffness = 0.5 * (stiffness + stiffness.T)  # symmetric by reciprocity; remove round-off
+        compliance = np.linalg.inv(stiffness)
+    return PunchSolution(stiffness, compliance, pressure, mesh)
 
 
 def mirror_maps(mesh: CellMesh, tol_mm: float = 1e-9) -> list[np.ndarray]:

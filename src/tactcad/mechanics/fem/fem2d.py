@@ -51,7 +51,6 @@ Units: mm, N, MPa, N/mm, s.
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import math
 import time
@@ -63,6 +62,7 @@ import numpy as np
 from tactcad.design.array_plan import ElementGeometry, Material
 from tactcad.mechanics.fem.fem_mesh import (WEB_DIVISIONS, FemRegion, RegionMesh, curved_doflocs, fem_region,
                        mesh_region)
+from tactcad.mechanics.blas_threads import single_threaded_blas  # noqa: F401 (the FEM levels' import)
 from tactcad.mechanics.bonded_layer import BondedLayer
 from tactcad.mechanics.stiffness_result import StiffnessResult
 from tactcad.mechanics.richardson import Richardson, richardson
@@ -304,48 +304,6 @@ def vertex_gradient(sb, u_scalar_fields: Sequence[np.ndarray], vertex: int) -> n
         at_k = basis_gradients(sb, u_scalar_fields, cells[local == k], ref[:, [k]])
         G += at_k[:, :, :, 0].sum(axis=2)
     return G / len(cells)
-
-
-@contextlib.contextmanager
-def single_threaded_blas():
-    """Run the block with the process's OpenBLAS libraries on one thread.
-
-    The FEM iteration alternates single-threaded sparse products with small
-    BLAS calls; on two cores, idle-spinning BLAS threads slow it by about
-    2x. Works like threadpoolctl: the OpenBLAS builds that numpy and scipy
-    load expose ``*_set_num_threads``; the old count is restored on exit.
-    A no-op where no such library is found (e.g. not Linux).
-    """
-    import ctypes
-
-    restore = []
-    try:
-        with open("/proc/self/maps", encoding="utf-8") as fh:
-            paths = {ln.split()[-1] for ln in fh if "openblas" in ln.lower() and "/" in ln}
-    except OSError:
-        paths = set()
-    for path in sorted(paths):
-        try:
-            lib = ctypes.CDLL(path)
-        except OSError:
-            continue
-        for suffix in ("64_", ""):
-            for prefix in ("scipy_openblas", "openblas"):
-                setter = getattr(lib, f"{prefix}_set_num_threads{suffix}", None)
-                getter = getattr(lib, f"{prefix}_get_num_threads{suffix}", None)
-                if setter is not None and getter is not None:
-                    old = int(getter())
-                    setter(1)
-                    restore.append((setter, old))
-                    break
-            else:
-                continue
-            break
-    try:
-        yield
-    finally:
-        for setter, old in restore:
-            setter(old)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
