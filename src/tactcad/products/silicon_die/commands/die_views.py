@@ -406,9 +406,12 @@ def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _stiffness(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.commands import progress_from_args
     from tactcad.products.silicon_die.studies.die_reports import stiffness_report
 
-    report, lines = stiffness_report(_planned(design, args).plan, die_model(args, "stiffness"))
+    model = die_model(args, "stiffness")  # before the die is planned: a refusal at once
+    report, lines = stiffness_report(_planned(design, args).plan, model,
+                                     progress_from_args(args))
     return {"design": str(design), **report}, lines
 
 
