@@ -37,9 +37,9 @@ def solved(monkeypatch) -> list[str]:
 
     full, roles = die_fem3d.die_beam_fem3d, []
 
-    def coarsest(plan, beam, divisions=COARSEST, frame=True):
+    def coarsest(plan, beam, divisions=COARSEST, frame=True, progress=None):
         roles.append(beam.role)
-        return full(plan, beam, divisions, frame)
+        return full(plan, beam, divisions, frame, progress)
 
     monkeypatch.setattr(die_fem3d, "die_beam_fem3d", coarsest)
     return roles
@@ -53,7 +53,7 @@ def stand_in(monkeypatch) -> list[str]:
 
     roles = []
 
-    def fake(plan, beam, divisions=die_fem3d.DIVISIONS, frame=True):
+    def fake(plan, beam, divisions=die_fem3d.DIVISIONS, frame=True, progress=None):
         roles.append(beam.role)
         f1 = 0.9 * die_dynamics.first_resonance_Hz(plan, beam)
         at = ROLES.index(beam.role)

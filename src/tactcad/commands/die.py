@@ -464,7 +464,7 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
                           "detail": c.detail} for c in checks], "counts": counts}
     made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
     _write_review_and_manifest(plan, planned.source, made, files, budget, staging,
-                               mount, getattr(args, "design", None))
+                               mount, getattr(args, "design", None), readout)
     return {"record": record, "checks": checks, "counts": counts, "readout": readout,
             "dies": dies, "modes": modes, "fe": fe, "budget": budget,
             "jobs_run": jobs_run, "jobs_reused": len(jobs) - jobs_run}
@@ -538,10 +538,13 @@ def keep_die_export(key: str, staging: Path, kept: dict) -> None:
 
 
 def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict,
-                               budget, staging: Path, mount, design_file: str | None) -> None:
+                               budget, staging: Path, mount, design_file: str | None,
+                               readout: dict) -> None:
     """The die's review page and manifest, from the files made before them in
     ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`); the page shows the
-    atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`)."""
+    atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`),
+    and, as an array's, the grasp (``tactcad grasp``'s record at its defaults), the tissue
+    coupling and the build book (the die's traveller, ``readout``'s sheet resistance)."""
     from tactcad.export.atlas_view import atlas_view
     from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
                                                                   strength_report)
@@ -550,8 +553,22 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     from tactcad.products.silicon_die.export.die_review import (
         beam_elements, design_head, die_manifest, manifest_text, review_contents_of_die)
     from tactcad.products.silicon_die.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.export.die_review import traveller_book
+    from tactcad.products.silicon_die.export.traveller import traveller_steps
+    from tactcad.products.silicon_die.studies.die_grasp_report import (default_grasp_options,
+                                                                       die_grasp_record)
+    from tactcad.products.silicon_die.studies.die_verification import (
+        die_tissue_coupling_record)
 
     head = design_head(plan.name, source)
+    from tactcad.errors import DesignError
+
+    try:
+        grasp, _ = die_grasp_record(plan, mount, default_grasp_options(),
+                                    Path(design_file).name if design_file else None)
+    except DesignError as exc:  # shown on the page as why, never a failed export
+        grasp = {"not_applicable": f"the grasp at tactcad grasp's defaults has no answer: {exc}"}
+    book = traveller_book(traveller_steps(plan, readout["sheet_resistance_ohm_per_sq"]))
     elements = beam_elements(strength_report(plan)[0], stiffness_report(plan)[0])
     contents = review_contents_of_die(
         head, die_verification(plan, mount),
@@ -559,7 +576,8 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
         budget.as_json(), atlas_view(design_file, (plan.full_scale_force_N,
                                                     *plan.kobj_range_N_per_mm)),
-        full_scale_force_N=plan.full_scale_force_N)
+        full_scale_force_N=plan.full_scale_force_N, grasp=grasp,
+        tissue_coupling=die_tissue_coupling_record(plan), book=book)
     write_review_page(made["review"], contents, import_map())
     listed = {k: made[k].relative_to(staging).as_posix() for k in made
               if k not in NOT_IN_MANIFEST}

@@ -505,8 +505,10 @@ function showVerification() {  // the manifest's verification matrix, when the e
 }
 
 function showTableSection(t, id) {  // a section of one table (title, columns, rows) or hidden
+  // a section that does not apply to the product is its one line (title) without a table
   $(id).hidden = $(`nav-${id}`).hidden = !t;
-  $(`${id}-body`).replaceChildren(...(t ? [el('p', t.title), table(t.columns, t.rows)] : []));
+  $(`${id}-body`).replaceChildren(...(t ? [el('p', t.title),
+    ...(t.rows.length ? [table(t.columns, t.rows)] : [])] : []));
 }
 
 function showBudget() {  // the K_obj error budget, the tissue coupling, the grasp: one table each

@@ -163,6 +163,8 @@ def tissue_coupling_view(record: dict | None) -> dict | None:
     with their units); None without a unit."""
     from tactcad.in_use.tissue_coupling import unit_label
 
+    if record and record.get("not_applicable"):
+        return not_applicable_view(record["not_applicable"])
     if not record or not record.get("units"):
         return None
     eq3 = {tuple(it["unit"]): it for it in record["eq3"]["items"]}
@@ -193,7 +195,22 @@ def _plus_minus_pct(error_rel: float | None) -> str:
 def grasp_view(record: dict | None) -> dict | None:
     """The manifest's grasp at the maximum grasp force as the page's table: one row per
     element, its force on its spring, its stop's share, its rating, margin and verdict
-    (texts with their units); None when the design states no maximum grasp force."""
+    (texts with their units); None when the design states no maximum grasp force.
+
+    A ``tactcad grasp`` record (any product's: its ``grasp`` holds the tips of the jaw
+    closed on tissue, each element's force, stop share and rating) is shown with the same
+    columns (:func:`grasp_tips_view`); a record ``{"not_applicable": why}`` as one line.
+
+    Args:
+        record: the manifest's ``grasp`` record, a grasp command's record, or None.
+
+    Returns:
+        The section's title, columns and rows, or None.
+    """
+    if record and record.get("not_applicable"):
+        return not_applicable_view(record["not_applicable"])
+    if record and "tips" in (record.get("grasp") or {}):
+        return grasp_tips_view(record)
     if not record:
         return None
     columns = ["element", "force on its spring", "on the stop", "rating", "margin", "verdict"]
@@ -208,6 +225,54 @@ def grasp_view(record: dict | None) -> dict | None:
           f"stops {lay['stop_force_N']:.4g} N; " if lay else "")
     title = (f"grasp force {record['target']:g} N: {record['verdict'].upper()}; {at}"
              f"{record['basis']}")
+    return {"title": title, "columns": columns, "rows": rows}
+
+
+def not_applicable_view(why: str) -> dict:
+    """A section that does not apply to the product: shown as the one line ``why``, no table.
+
+    Args:
+        why: why the section does not apply (one sentence).
+
+    Returns:
+        The section's title (``why``) with no columns and no rows.
+    """
+    return {"title": str(why), "columns": [], "rows": []}
+
+
+def grasp_tips_view(record: dict) -> dict:
+    """A ``tactcad grasp`` record (its ``grasp``: the jaw closed on tissue, one tip per
+    element) as the grasp section's table: each element's force on its spring (N), its
+    stop's share (N), its rating (N), its margin to the rating (%) and its verdict (FAIL:
+    past its overload limit; over rating: past its rating only).
+
+    Args:
+        record: the grasp command's record (``grasp`` with ``tips``, ``total_force_N``,
+            ``angle_deg``; ``reasons`` and ``coupling`` where given).
+
+    Returns:
+        The section's title, columns and rows.
+    """
+    lay = record["grasp"]
+    columns = ["element", "force on its spring", "on the stop", "rating", "margin", "verdict"]
+    rows = []
+    for t in lay["tips"]:
+        rated = t.get("rated_force_N")
+        margin = (None if not rated else 1.0 - t["element_force_N"] / rated)
+        verdict = ("fail" if t.get("over_overload_limit") else
+                   "over rating" if t.get("over_rating") else "pass")
+        rows.append({"element": str(t["site"]),
+                     "force on its spring": f"{t['element_force_N']:.4g} N",
+                     "on the stop": f"{t['stop_force_N']:.4g} N" if t.get("on_stop") else "-",
+                     "rating": "-" if rated is None else f"{rated:.4g} N",
+                     "margin": "-" if margin is None else f"{100 * margin:+.3g} %",
+                     "verdict": verdict.upper()})
+    passed = record.get("passed", not any(t.get("over_overload_limit") for t in lay["tips"]))
+    why = (record.get("reasons") or {}).get("force_N")
+    title = (f"grasp force {lay['total_force_N']:.4g} N: {'PASS' if passed else 'FAIL'}; "
+             f"angle {lay['angle_deg']:.4g} degrees"
+             + (f", tissue coupling {record['coupling']}" if record.get("coupling") else "")
+             + (f"; the force: {why}" if why else "") + "; tactcad grasp shows every unit")
     return {"title": title, "columns": columns, "rows": rows}
 
 

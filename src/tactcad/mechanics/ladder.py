@@ -86,9 +86,14 @@ for _level in (Level("closed-form", "tactcad.mechanics.closed_form", "estimate_c
                Level("fem2d", "tactcad.mechanics.fem.fem2d", "estimate_fem2d", meshed=True,
                      cost="~1 s"),
                # measured on two cores: 13 s for the paper's 7 mm element, about 100 s for a
-               # 2 x 8 strip's thin 7075 elements (their finer mesh)
+               # 2 x 8 strip's thin 7075 elements (their finer mesh); a die's two beams about
+               # 1.5 min for the shipped dies (67 000 ... 128 000 unknowns a finer mesh), 865 s
+               # wall (282 s CPU, 3.6 GB) for an atlas die of 206 000 (a 1 um sliver between
+               # its posts' and beams' edges)
                Level("fem3d", "tactcad.mechanics.fem.fem3d", "estimate_fem3d", meshed=True,
-                     cost="10 s-2 min")):
+                     cost="10 s-2 min an array's element, a silicon die's two beams 1.5-15 "
+                          "min and up to 4 GB, growing with the mesh (progress on stderr "
+                          "names its unknowns)")):
     register_level(_level)
 
 

@@ -20,13 +20,14 @@ levels each view computes (:data:`DIE_MODEL_LEVELS`) and any other refused namin
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 from typing import Any, Callable
 
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
 from tactcad.products.silicon_die.studies.die_reports import DIE_MODAL_LEVELS
+from tactcad.products.silicon_die.studies.die_grasp_report import (  # noqa: F401 (its names)
+    die_grasp_record, error_words, rated_words, role_ratings_N)
 from tactcad.products.silicon_die.studies.die_verification import die_verification
 
 #: The options of an array command a die's view reads, by command (the others are refused).
@@ -298,84 +299,17 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _grasp(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.in_use.die_grasp import (default_grasp_force_N, die_grasp,
-                                                                die_jaw)
     from tactcad.commands.options import grasp_option_error
-    from tactcad.in_use.grasp_experiment import (kobj_range_warning, overload_warning,
-                                                 overloaded_sites, with_kobj_range)
-    from tactcad.studies.grasp_report import with_grasp_deprecated_keys
+    from tactcad.products.silicon_die.design.die_mount import die_mount
 
     planned = _planned(design, args)
     plan = planned.plan
-    mount = die_mount(plan, planned.jaw_stated)
-    lo, hi = plan.kobj_range_N_per_mm
-    k_obj = args.kobj if args.kobj is not None else math.sqrt(lo * hi)
-    opening = args.opening_deg if args.opening_deg is not None else mount.opening_angle_deg
-    asked = args.angle_deg is not None or args.force_N is not None
-    force = args.force_N if asked else default_grasp_force_N(plan)
-    rated = role_ratings_N(plan)
-    force_why = ("--force-N" if args.force_N is not None else "--angle-deg"
-                 if args.angle_deg is not None else
-                 f"half each beam's own rated force ({rated_words(rated)}) summed over its "
-                 f"{len(plan.beams)} beams")
     try:
-        jaw = die_jaw(mount, opening, args.slab_thickness_mm)
-        shut = dict(coupling=args.coupling, profile=args.profile)
-        try:
-            result = die_grasp(plan, mount, jaw, k_obj, angle_deg=args.angle_deg,
-                               force_N=None if args.angle_deg is not None else force, **shut)
-        except DesignError as exc:
-            if asked or exc.field != "force_N":
-                raise
-            # the default force out of the tissue's reach: the jaw fully open or closed flat
-            result = die_grasp(plan, mount, jaw, k_obj, angle_deg=jaw.opening_angle_deg, **shut)
-            if result.total_force_N <= force:
-                result = die_grasp(plan, mount, jaw, k_obj, angle_deg=0.0, **shut)
-            force_why = (f"{force_why} ({force:g} N) is out of the tissue's reach: the jaw at "
-                         f"{result.angle_deg:g} degrees takes {result.total_force_N:.4g} N")
+        record, result = die_grasp_record(plan, die_mount(plan, planned.jaw_stated), args,
+                                          str(design))
     except DesignError as exc:
         raise grasp_option_error(exc, args) from None
-    result = with_kobj_range(result, (lo, hi))
-    warnings = [w for w in (kobj_range_warning(k_obj, (lo, hi)), overload_warning(result)) if w]
-    record = {"design": str(design), "die": plan.name,
-              "kobj_range_N_per_mm": [lo, hi], "warnings": warnings,
-              # a beam past its breaking force: the grasp does not pass (exit 1)
-              "passed": not overloaded_sites(result.tips),
-              "jaw": {"pin_x_mm": mount.pin_x_mm, "jaw_length_mm": mount.jaw_length_mm,
-                      "pin_to_tip_mm": jaw.pin_to_tip_mm,
-                      "opening_angle_deg": jaw.opening_angle_deg,
-                      "slab_thickness_mm": jaw.slab_thickness_mm},
-              "K_obj_N_per_mm": k_obj, "coupling": args.coupling, "profile": args.profile,
-              "full_scale_force_N": plan.full_scale_force_N, "rated_force_N_by_role": rated,
-              "post_proud_mm": mount.post_proud_mm,
-              "grasp": result.as_json(),
-              "reasons": {"force_N": force_why,
-                          "K_obj": "--kobj" if args.kobj is not None else
-                          f"the geometric mean of the die's K_obj range {lo:g} ... {hi:g} N/mm",
-                          "opening": "--opening-deg" if args.opening_deg is not None else
-                          "the jaw's opening_angle_deg",
-                          "rated_force_N": "each beam's own: the most it carries in use "
-                                           "(the full-scale force on a reference beam, K_m "
-                                           "x its rated travel on a measuring beam), as "
-                                           "strength and verify rate it",
-                          "overload_limit_N": "each beam's root at the mean strength of "
-                                              "etched silicon bars (no Weibull modulus)",
-                          "error": error_words(args.coupling)}}
-    # the old name of the K_obj range beside the glossary's, as the metal grasp writes it
-    record = with_grasp_deprecated_keys(record)
     return record, grasp_lines(plan, record, result)
-
-
-def error_words(coupling: str) -> str:
-    """What the die's grasp error holds, by the tissue's ``coupling``: uncoupled (``none``,
-    eq. 1) no coupling between the posts is in the read R to name."""
-    caveat = ("the tissue is not coupled between the posts (--coupling none, eq. 1)"
-              if coupling == "none" else
-              "the tissue's coupling between neighbouring posts stays in it (the die's "
-              "budget: the coupled inversion removes it)")
-    return (f"eq. 3 on the read R: {caveat}; a unit's two posts share one radius, so the "
-            "travel correction changes nothing")
 
 
 def reads_why(unit: dict) -> str:
@@ -464,17 +398,6 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
     return lines
 
 
-def role_ratings_N(plan) -> dict[str, float]:
-    """Each beam role's rated force (N), as :meth:`DiePlan.rated_force_N` gives it (every
-    beam of a role carries one rating)."""
-    return {b.role: plan.rated_force_N(b) for b in plan.beams}
-
-
-def rated_words(rated: dict[str, float]) -> str:
-    """The roles' ratings in words (mN), e.g. ``9 mN reference, 4.95 mN measuring``."""
-    return ", ".join(f"{1e3 * f:.3g} mN {role}" for role, f in rated.items())
-
-
 def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
     from tactcad.products.silicon_die.studies.die_reports import strength_report
 
@@ -483,9 +406,12 @@ def _strength(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
 
 
 def _stiffness(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
+    from tactcad.commands import progress_from_args
     from tactcad.products.silicon_die.studies.die_reports import stiffness_report
 
-    report, lines = stiffness_report(_planned(design, args).plan, die_model(args, "stiffness"))
+    model = die_model(args, "stiffness")  # before the die is planned: a refusal at once
+    report, lines = stiffness_report(_planned(design, args).plan, model,
+                                     progress_from_args(args))
     return {"design": str(design), **report}, lines
 
 

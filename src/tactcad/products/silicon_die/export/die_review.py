@@ -131,26 +131,64 @@ def budget_table(budget: Mapping[str, Any]) -> dict | None:
             "columns": columns, "rows": rows}
 
 
+def traveller_book(steps) -> list[dict]:
+    """The die's process traveller (:func:`tactcad.products.silicon_die.export.traveller.
+    traveller_steps`) as the review page's build book: one step each, in process order,
+    shown in the die's one scene (a wafer step adds no part to it, so nothing is
+    highlighted or exploded), its mask as its tool, what is done, what stops it and what it
+    leaves as its notes.
+
+    Args:
+        steps: the traveller's steps (each with ``name``, ``mask``, ``action``, ``stop``,
+            ``leaves``, ``kinds``).
+
+    Returns:
+        The book's steps (``key``, ``title``, ``scene``, ``parts``, ``tools``, ``notes``,
+        ``highlight``, ``explode``), as :func:`tactcad.export.review_page.review_contents`
+        takes them.
+    """
+    return [{"key": f"traveller-{i}", "title": s.name, "scene": SCENE, "parts": [],
+             "tools": [f"mask {s.mask}"] if s.mask else [],
+             "notes": [f"{', '.join(s.kinds)}: {s.action}" if s.kinds else s.action,
+                       *([f"stops on: {s.stop}"] if s.stop else []), f"leaves: {s.leaves}"],
+             "highlight": [], "explode": {}}
+            for i, s in enumerate(steps, start=1)]
+
+
 def review_contents_of_die(head: Mapping[str, Any], verification: list[dict],
                            drawing: tuple[str, str], scene_glb: bytes, bom_csv: str,
                            elements: list[dict], budget: Mapping[str, Any],
-                           atlas: dict | None = None, full_scale_force_N: float | None = None):
+                           atlas: dict | None = None, full_scale_force_N: float | None = None,
+                           grasp: Mapping[str, Any] | None = None,
+                           tissue_coupling: Mapping[str, Any] | None = None,
+                           book: list[dict] | None = None):
     """The review page's contents (:class:`tactcad.export.review_page.ReviewContents`) of a
     die: ``drawing`` (export path, SVG text), the mount's GLB, the BOM's CSV text, the beams
     as elements (:func:`beam_elements`: each row with its own rated force), the die's
     full-scale force (N; the page's "rated full-scale force", None: not shown), the jaw's atlas (:mod:`tactcad.export.atlas_view`;
     None: none), the verification records
     (:func:`tactcad.products.silicon_die.studies.die_verification.die_verification`) and the K_obj budget; dated
-    as the sheets are (``SOURCE_DATE_EPOCH``, else undated), never by the clock."""
+    as the sheets are (``SOURCE_DATE_EPOCH``, else undated), never by the clock.
+
+    The grasp (``tactcad grasp``'s record on the die), the tissue coupling
+    (:func:`tactcad.products.silicon_die.studies.die_verification.die_tissue_coupling_record`) and
+    the build book (:func:`traveller_book`) go through the page's own sections, as an
+    array's do; one not given is shown as a line saying why, never hidden."""
     from tactcad.drawings.frame import epoch_date
     from tactcad.export.review_assets import three_version
     from tactcad.export.review_page import review_contents
 
-    facts = {**head, "requirements": {"closed_form_matrix": verification}}
+    facts = {**head, "requirements": {"closed_form_matrix": verification},
+             "grasp": dict(grasp) if grasp else {
+                 "not_applicable": "no grasp was computed for this die: `tactcad grasp` on "
+                                   "its design file closes its jaw on tissue"},
+             "tissue_coupling": dict(tissue_coupling) if tissue_coupling else {
+                 "not_applicable": "no tissue coupling was computed for this die: `tactcad "
+                                   "budget` on its design file gives its tissue terms"}}
     contents = review_contents(facts, [(drawing[0], "the die and its carrier", drawing[1])],
                                {SCENE: scene_glb}, bom_csv, elements, "A",
                                epoch_date(os.environ) or "\u2014", three_version(),
-                               atlas=atlas)
+                               book or (), atlas=atlas)
     contents.data["kobj_budget"] = budget_table(budget)
     contents.data["full_scale_force_N"] = full_scale_force_N
     return contents

@@ -17,8 +17,39 @@ from tactcad.products.silicon_die.studies.die_verification import die_verificati
 from tactcad.studies.verification import matrix_table
 
 
+def fem3d_solving_line(plan, beam) -> str:
+    """What is about to be solved at fem3d for ``beam`` and what it costs: the finer mesh's
+    unknowns (counted without solving, :func:`~tactcad.products.silicon_die.mechanics.
+    die_fem3d.mesh_dofs`) against the shipped dies' (about 45 s a beam on two cores), and
+    the sliver between the post's edge and the beam's when it is thinner than the finer
+    mesh's edge through the beam (um): it then sets the finest edge across the beam, from
+    which the frame's cells grow.
+
+    Args:
+        plan: the die's plan. beam: one of its beams.
+
+    Returns:
+        One progress line.
+    """
+    from tactcad.products.silicon_die.mechanics.die_fem3d import (DIVISIONS, SHIPPED_FINE_DOFS,
+                                                                  mesh_dofs)
+
+    fine = mesh_dofs(plan, beam)[1]
+    lo, hi = SHIPPED_FINE_DOFS
+    line = (f"fem3d of die {plan.name}'s {beam.role} beam on its frame: two meshes, "
+            f"extrapolated; the finer {fine:,} unknowns (the shipped dies' {lo:,} ... "
+            f"{hi:,}: about 45 s a beam on two cores; the time grows faster than the unknowns)")
+    sliver = (beam.width_um - min(plan.post_um, beam.width_um)) / 2
+    # thinner than the finer mesh's edge through the beam: a sliver the whole block carries
+    if 0 < sliver < beam.thickness_um / (2 * DIVISIONS[2]):
+        line += (f"; the post's edge {sliver:.3g} um inside the beam's sets the mesh's "
+                 "finest edge across it, and the frame's cells grow from it")
+    return line
+
+
 def die_beam_fem3d_kept(plan, beam, reused: Callable[[str], None] | None = None,
-                        solving: Callable[[], None] | None = None):
+                        solving: Callable[[], None] | None = None,
+                        progress: Callable[[str], None] | None = None):
     """:func:`tactcad.products.silicon_die.mechanics.die_fem3d.die_beam_fem3d`, kept in the result store for the
     same plan and beam (a second run of the same die solves nothing).
 
@@ -27,6 +58,8 @@ def die_beam_fem3d_kept(plan, beam, reused: Callable[[str], None] | None = None,
         reused: called once, with where it came from, when the solve is a kept one
             (:func:`tactcad.store.kept_result`).
         solving: called once before the beam is solved (not when a kept solve is reused).
+        progress: told each mesh's solve as it goes (:func:`~tactcad.products.silicon_die.
+            mechanics.die_fem3d.die_beam_fem3d`); None says nothing.
 
     Returns:
         :class:`tactcad.products.silicon_die.mechanics.die_fem3d.DieBeamFem` (N/mm, Hz, s).
@@ -37,7 +70,7 @@ def die_beam_fem3d_kept(plan, beam, reused: Callable[[str], None] | None = None,
     def solve():
         if solving is not None:
             solving()
-        return die_beam_fem3d(plan, beam)
+        return die_beam_fem3d(plan, beam, progress=progress)
 
     return kept_result("die beam fem3d", solve,
                        json.dumps(plan.as_json(), sort_keys=True, default=str), beam,
@@ -119,11 +152,17 @@ STIFFNESS_RENAMED = {"closed_form_N_per_mm": "K_closed_form_N_per_mm",
                      "closed_form_error_rel": "K_closed_form_error_rel"}
 
 
-def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]:
+def stiffness_report(plan, model: str = "closed-form",
+                     progress: Callable[[str], None] | None = None) -> tuple[dict, list[str]]:
     """Each row's beam K on its frame at ``model`` (``closed-form``, or ``fem3d`` with the
     closed form's K and its error against fem3d, ``K_closed_form_N_per_mm`` and
     ``K_closed_form_error_rel``, old names beside them, :data:`STIFFNESS_RENAMED`; the
-    fem3d solve kept in the result store): (report, text lines). N/mm, um, s."""
+    fem3d solve kept in the result store): (report, text lines). N/mm, um, s.
+
+    ``progress`` (fem3d) is told, before each beam is solved, its finer mesh's unknowns
+    against the shipped dies' (:func:`fem3d_solving_line`), then each mesh as it is solved,
+    or where a kept solve came from; None says nothing."""
+    say = progress or (lambda line: None)
     from tactcad.in_use.kobj_budget import with_declared_deprecated_keys
     from tactcad.products.silicon_die.design.mems_die import (CLOSED_FORM_K_ERROR_REL,
                                                               root_extension_um)
@@ -137,7 +176,10 @@ def stiffness_report(plan, model: str = "closed-form") -> tuple[dict, list[str]]
                "target_N_per_mm": target, "model": "closed-form", "stiffness_N_per_mm": k,
                "error_estimate_rel": CLOSED_FORM_K_ERROR_REL}
         if model == "fem3d":
-            fem = die_beam_fem3d_kept(plan, beam)
+            fem = die_beam_fem3d_kept(
+                plan, beam, reused=lambda where, role=beam.role: say(
+                    f"fem3d of die {plan.name}'s {role} beam: {where} (the same die)"),
+                solving=lambda b=beam: say(fem3d_solving_line(plan, b)), progress=say)
             row.update(model="fem3d", stiffness_N_per_mm=fem.k_N_per_mm,
                        error_estimate_rel=fem.k_error_rel, K_closed_form_N_per_mm=k,
                        K_closed_form_error_rel=k / fem.k_N_per_mm - 1.0,
@@ -233,11 +275,11 @@ def modes_report(plan, model: str = "closed-form",
                 kept.append(True)
                 say(f"fem3d of die {plan.name}'s {role} beam: {where} (the same die)")
 
-            def on_solve() -> None:
-                say(f"fem3d of die {plan.name}'s {role} beam on its frame: two meshes, "
-                    "extrapolated (about 45 s a beam on two cores)")
+            def on_solve(b=beam) -> None:
+                say(fem3d_solving_line(plan, b))
 
-            fem = die_beam_fem3d_kept(plan, beam, reused=on_reuse, solving=on_solve)
+            fem = die_beam_fem3d_kept(plan, beam, reused=on_reuse, solving=on_solve,
+                                      progress=say)
             row.update(model="fem3d", first_Hz=fem.f1_Hz, first_Hz_error_rel=fem.f1_error_rel,
                        wall_time_s=fem.wall_time_s, reused=bool(kept), dofs=fem.dofs,
                        first_Hz_closed_form_error_rel=modes.rayleigh_Hz / fem.f1_Hz - 1.0)

@@ -497,3 +497,59 @@ def _stop_row(plan, rows, fracture_travel_um: dict) -> dict:
                              f"{worst['item']} (error {100 * worst['error_estimate_rel']:.2g} %:"
                              f" K_t's {100 * kt_error_rel(plan):.2g} %, the closed form's K "
                              f"{100 * CLOSED_FORM_K_ERROR_REL:.2g} %)"}
+
+
+def die_tissue_coupling_record(plan) -> dict:
+    """The K_obj bias the tissue's coupling between the posts causes on the die's middle unit,
+    worst over the K_obj range, read by eq. 3 and by the coupled inversion, each judged
+    against the die's K_obj resolution: the record the metal arrays' verify makes
+    (:func:`tactcad.studies.verification.tissue_coupling_record`: ``tissue``,
+    ``target_rel``, ``units``, ``eq3`` and ``coupled`` items), from the same per-unit solve
+    (:func:`tactcad.in_use.tissue_coupling.unit_bias`) on the die's posts pressing one
+    half-space (the budget's coupled sample). The coupled inversion's error is the budget's
+    own: the punch model's share of the shift it predicts plus its mesh error.
+
+    Args:
+        plan: :class:`tactcad.products.silicon_die.design.mems_die.DiePlan`.
+
+    Returns:
+        The record (relative biases, N/mm); an item whose reading has no answer fails.
+
+    Raises:
+        ContactError: the coupled sample has no solution (as the budget).
+    """
+    from tactcad.in_use.kobj_budget import COUPLING_MODEL_ERROR_REL
+    from tactcad.in_use.tissue_coupling import Tissue, unit_bias
+    from tactcad.mechanics.verdicts import deciding_item, judged
+    from tactcad.studies.verification import TISSUE_MODEL_ERROR_REL, TISSUE_POINTS, bias_verdict
+
+    import numpy as np
+
+    from tactcad.products.silicon_die.in_use.die_budget import _die_unit
+
+    unit = _die_unit(plan)
+    points = np.geomspace(*plan.kobj_range_N_per_mm, TISSUE_POINTS)
+    record = unit_bias(unit.sample, unit.stiffness, unit.pair, points).as_json()
+    target = plan.kobj_resolution_rel
+    eq3, corrected = record["worst_eq3_rel"], record["worst_corrected_rel"]
+    error = (COUPLING_MODEL_ERROR_REL * abs(eq3) if eq3 is not None else 0.0) \
+        + float(unit.sample.error_rel)
+
+    def margin(bias):
+        return None if not bias else target / abs(bias) - 1.0
+
+    eq3_item = judged({"unit": record["unit"], "bias_rel": eq3, "margin_rel": margin(eq3),
+                       "error_estimate_rel": TISSUE_MODEL_ERROR_REL, "pass": eq3 is not None})
+    coupled_item = {"unit": record["unit"], "bias_rel": corrected,
+                    "margin_rel": margin(corrected),
+                    "error_estimate_rel": error / abs(corrected) if corrected else None,
+                    "bias_error_rel": error, "pass": corrected is not None,
+                    "verdict": "fail" if corrected is None
+                    else bias_verdict(corrected, error, target)}
+    if eq3 is None:
+        eq3_item["verdict"] = "fail"  # eq. 3 has no answer for the coupled R there
+    return {"tissue": Tissue().describe(), "target_rel": target, "units": [record],
+            "check_level": "the die's middle unit only; the coupled inversion's error is "
+                           "the punch model's share of the shift plus its mesh error",
+            **{name: {"items": [it], "verdict": deciding_item([it])["verdict"]}
+               for name, it in (("eq3", eq3_item), ("coupled", coupled_item))}}
