@@ -261,3 +261,11 @@ def test_the_clamp_bolt_refusal_offers_only_changes_that_mend_it(capsys):
         assert size not in err
         assert cli.main(base + ["--set", f'clamp.bolt_size="{size}"']) == 2
         capsys.readouterr()
+
+
+def test_stiffness_help_says_which_levels_a_die_takes(capsys):
+    """A die refuses beam and fem2d: the help of --model says so."""
+    with pytest.raises(SystemExit):
+        cli.main(["stiffness", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "beam, fem2d: an array only (a silicon die: closed-form, fem3d)" in text
