@@ -156,7 +156,7 @@ def test_a_design_of_the_fewest_columns_is_not_told_to_use_fewer_columns(capsys)
                      "--set", "clamp.plate_thickness_mm=10", "--set", "sheet.thickness_mm=10",
                      "--set", "array.pitch_mm=12"])
     err = capsys.readouterr().err
-    assert code == 2 and "array.columns = 2: allowed a larger bolt than M2" in err
+    assert code == 2 and "array.columns = 2: allowed clamp plates 1.5 mm thick or thinner" in err
     assert "fewer columns" not in err
 
 
@@ -238,3 +238,34 @@ def test_a_key_set_twice_is_said_as_a_repeated_option_is():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         parse_overrides(["element.web_thickness_mm=0.3", "array.pitch_mm=4.0"])  # no word
+
+
+def test_the_clamp_bolt_refusal_offers_only_changes_that_mend_it(capsys):
+    """A stack too long for the M2 clamp bolt: every change the refusal offers to paste
+    passes once pasted, and the bolt sizes and plates it does not offer do not."""
+    import shlex
+
+    arms = "arms.lengths_mm=[4.5,5,6,7,7.5,6,6,7.5,7,6.5,5.5,5]"
+    base = ["scenes", "--set", "array.columns=6", "--set", arms]
+    assert cli.main(base) == 2
+    err = capsys.readouterr().err
+    assert "array.columns = 6: allowed" in err and "thinner clamp plates" not in err
+    pastes = [line.split("to paste: ", 1)[1].rsplit(" (", 1)[0]
+              for line in err.splitlines() if "to paste: " in line]
+    assert any("clamp.plate_thickness_mm" in p for p in pastes), err
+    assert any("array.columns=5" in p for p in pastes), err
+    for paste in pastes:
+        assert cli.main(base + shlex.split(paste)) == 0, paste
+        capsys.readouterr()
+    for size in ("M1.6", "M2.5", "M3"):  # not offered: each still refused
+        assert size not in err
+        assert cli.main(base + ["--set", f'clamp.bolt_size="{size}"']) == 2
+        capsys.readouterr()
+
+
+def test_stiffness_help_says_which_levels_a_die_takes(capsys):
+    """A die refuses beam and fem2d: the help of --model says so."""
+    with pytest.raises(SystemExit):
+        cli.main(["stiffness", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "beam, fem2d: an array only (a silicon die: closed-form, fem3d)" in text

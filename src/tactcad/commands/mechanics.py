@@ -25,7 +25,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "along row 1, then row 2; required for an array; a silicon die gives "
                         "each row's beam)")
     p.add_argument("--model", choices=models(), default="closed-form",
-                   help=f"ladder level: {levels_help()} (default %(default)s)")
+                   help=f"ladder level: {levels_help()} (default %(default)s); beam, fem2d: "
+                        "an array only (a silicon die: closed-form, fem3d)")
     add_design_arg(p)
     add_cache_args(p)
     add_output_args(p, "print JSON")

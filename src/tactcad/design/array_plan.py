@@ -57,6 +57,8 @@ from tactcad.partlib.array.clamp_plate import ClampPlateGeometry, ClampSection
 from tactcad.partlib.array.element import (ARM_RANGE_MM, FITTED_DOMAIN,  # noqa: F401
                                            NOTCH_RADIUS_MAX_MM, WEB_RANGE_MM, ElementGeometry,
                                            ElementSection)
+from tactcad.partlib.array import clamp_fixes
+from tactcad.partlib.array.clamp_fixes import clamp_fixes as clamp_fix_offers
 from tactcad.partlib.array.prism import Hole
 from tactcad.partlib.array.spacer import SpacerGeometry
 from tactcad.partlib.registry import array_parts_lib, in_use_parts
@@ -730,12 +732,24 @@ def bolt_length(d: DesignFile) -> tuple[float | None, Derived]:
 def _check_bolt_length(d: DesignFile, p: Problems) -> None:
     length, why = bolt_length(d)
     bolt = BOLTS[d.clamp.bolt_size]
-    if length is None:
-        fewer = ("fewer columns or " if d.array.columns > STACKED_COLUMNS_RANGE[0]
-                 else "")  # the fewest a stacked array takes
-        p.add("array.columns", d.array.columns, f"{fewer}a larger bolt than {bolt.size}",
-              f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
-              f"{fmt(max(bolt.catalogue_lengths_mm))} mm")
+    if length is None:  # offer only the changes that pass this rule and the others
+
+        # tried with the default rigs' bracket ear too, which the bracket bolt grips as well
+        allowed, alternatives = clamp_fix_offers(d.model_dump(exclude_none=True, by_alias=True),
+                                            _default_bracket_ear_mm())
+        p.errors.append(DesignError(
+            "array.columns", d.array.columns, allowed,
+            f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
+            f"{fmt(max(bolt.catalogue_lengths_mm))} mm", p.file, alternatives))
+
+
+def _default_bracket_ear_mm() -> float:
+    """Thickness (mm) of the default rigs' bracket ear, which the bracket bolt grips
+    besides the clamp plates and the stack."""
+    import tomllib
+
+    with open(DEFAULT_DESIGN.parent / "rigs.toml", "rb") as fh:
+        return float(tomllib.load(fh)["bracket"]["ear_thickness_mm"])
 
 
 def half_length(d: DesignFile) -> float:
@@ -899,6 +913,9 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile
         for rule in DERIVED_RULES:
             rule(model, p)
     return model, p
+
+
+clamp_fixes.DESIGN_CHECK[:] = [lambda data: validate_tables(data)[1]]
 
 
 def _grade_error(data: Mapping[str, Any]) -> DesignError | None:

@@ -23,7 +23,8 @@ from typing import Optional
 from tactcad.partlib.base import DrawingRecord, Fastener, PartData, RigPart, Seat
 from tactcad.kernel.shapes import box, cylinder, fuse, single
 from tactcad.partlib.stock import PLATE_ALUMINIUM
-from tactcad.vocabulary.grid import STACKED_COLUMNS_RANGE
+from tactcad.partlib.array.clamp_fixes import clamp_fixes
+from tactcad.errors import DesignError
 from tactcad.vocabulary.process import Method, Process
 from tactcad.vocabulary.schema import LIMIT_TOLERANCE_MM, Derived, Problems, Section, fmt, number
 from tactcad.vocabulary.standards import BoltSpec, shortest_stock_length
@@ -111,12 +112,13 @@ def derive(br: BracketSection, context, p: Problems) -> PartData:
     bolt_len = shortest_stock_length(b, needed)
     if bolt_len is None:  # the array's stack leaves no stock bolt for the ear: name the design
         bolt_len = max(b.catalogue_lengths_mm)
-        # a stacked array's fewest columns pair one reference with one measuring element
-        fewer = "fewer columns, " if plan.columns > STACKED_COLUMNS_RANGE[0] else ""
-        p.add("array.columns", plan.columns, f"{fewer}thinner clamp plates or a larger bolt "
-              f"than {b.size}", f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
-              f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
-              f"{fmt(bolt_len)} mm", file=Path(plan.source).name)
+        # offer only the changes that pass this rule (with the ear) and the design's others
+        allowed, alternatives = clamp_fixes(plan.raw, br.ear_thickness_mm)
+        p.errors.append(DesignError(
+            "array.columns", plan.columns, allowed,
+            f"the bracket bolt through ear {fmt(br.ear_thickness_mm)} mm, both "
+            f"clamp plates and the stack needs {fmt(needed)} mm, longest stock {b.size} is "
+            f"{fmt(bolt_len)} mm", Path(plan.source).name, alternatives))
     bolt_derived = Derived("bracket_bolt_length", bolt_len, "mm",
                            f"shortest stock {b.size} through ear {fmt(br.ear_thickness_mm)}, both "
                            f"clamp plates and the stack (grip {fmt(grip)}) + nut + 2 thread pitches")
