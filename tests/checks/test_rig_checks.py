@@ -103,6 +103,54 @@ def test_the_papers_rig_exceeds_the_papers_rating_and_says_why_it_is_kept():
         assert top * per_newton[r["element"]] < r["yield_limited_force_N"]
 
 
+def test_a_new_papers_array_edited_does_not_pass_on_the_papers_kept_overload(tmp_path):
+    """A lab's `new --example macro_array`, its K_obj range and arms edited (thinner
+    sheet, longer arms: a lower rating): check passed the paper's rig kept by the paper's
+    reason, 234 % over the new rating. The reason keeps only the overload it was judged
+    for: the check fails naming it, the values it accepted and those now."""
+    import re
+
+    from tactcad.project_folder import new_project
+
+    made = new_project(tmp_path / "stack6", example="macro_array")
+    text = made.design.read_text(encoding="utf-8")
+    text = re.sub(r"kobj_range_N_per_mm = \[[^\]]*\]", "kobj_range_N_per_mm = [0.8, 6.0]", text)
+    text = re.sub(r"thickness_mm = 3\.0 ", "thickness_mm = 2.5 ", text, count=1)
+    text = re.sub(r"lengths_mm = \[[^\]]*\]",
+                  "lengths_mm = [4.5, 5.0, 6.0, 7.0, 7.5, 6.0, 7.5, 7.0, 6.5, 5.5]", text)
+    made.design.write_text(text, encoding="utf-8")
+    project = tactcad.load(made.design).validated
+    load = rig_checks(project.plan, project.rigs)[0]
+    assert "EXCEEDS the rating" in load.detail
+    assert not load.passed, load.detail
+    rigs = project.rigs
+    assert "beyond_rating_reason of rigs.toml" in load.detail
+    assert f"judged for {rigs.beyond_rating_load_N:g} N on an element, rated " \
+           f"{rigs.beyond_rating_rated_N:g} N" in load.detail
+    rated = float(re.search(r"rated full-scale force ([\d.]+) N", load.detail).group(1))
+    assert rated < rigs.beyond_rating_rated_N
+    assert f"the rating is {rated:g} N now" in load.detail
+    assert "beyond_rating_load_N = " in load.detail.split("; ")[-1]  # what to state
+
+
+def test_a_kept_overload_bound_to_no_load_fails_naming_what_to_state():
+    project = tactcad.load()
+    data = default_rigs_data()
+    del data["evaluation"]["beyond_rating_load_N"]
+    load = rig_checks(project.plan, rigs_from_dict(data, project.plan))[0]
+    assert not load.passed
+    assert "bound to no load" in load.detail and "beyond_rating_rated_N = 0.3" in load.detail
+
+
+def test_a_kept_overload_fails_once_the_load_exceeds_what_it_accepted():
+    project = tactcad.load()
+    data = default_rigs_data()
+    data["evaluation"]["beyond_rating_load_N"] = 0.8
+    load = rig_checks(project.plan, rigs_from_dict(data, project.plan))[0]
+    assert not load.passed
+    assert "beyond the 0.8 N it accepted" in load.detail
+
+
 @pytest.mark.parametrize("value", [-1.0, "heavy"])
 def test_a_bad_preload_is_refused_naming_the_field(value):
     from tactcad.errors import DesignError

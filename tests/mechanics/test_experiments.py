@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from conftest import with_default_companions
+import tactcad
 from tactcad.cli import main
 from tactcad.mechanics import contact
 from tactcad.mechanics import calibration as cal
@@ -487,3 +488,47 @@ def test_evaluate_loads_a_design_as_its_own_rig_states(tmp_path, monkeypatch, ca
         main(["evaluate", "--help"])
     words = " ".join(capsys.readouterr().out.split())
     assert "2 x 3 mm" not in words and "the design's own tip face" in words
+
+
+def test_evaluate_warns_where_the_rig_loads_an_element_past_its_rating_or_yield(
+        tmp_path, monkeypatch, capsys):
+    """A lab's `new --example macro_array`, its K_obj range and arms edited: evaluate put
+    tip forces up to 0.83 N against the 0.26 N rating and warned nothing, under the keys
+    `fig6` and `fig7` (the paper's figure numbers). It warns naming each element past its
+    rating or yield-limited force; the keys say what the series are (the old ones
+    deprecated duplicates)."""
+    import re
+
+    from tactcad.project_folder import new_project
+    from tactcad.studies.reference_loads import strength_summary
+    from tactcad.studies.verification import rated_full_scale_force
+
+    made = new_project(tmp_path / "stack6", example="macro_array")
+    text = made.design.read_text(encoding="utf-8")
+    text = re.sub(r"kobj_range_N_per_mm = \[[^\]]*\]", "kobj_range_N_per_mm = [0.8, 6.0]", text)
+    text = re.sub(r"thickness_mm = 3\.0 ", "thickness_mm = 2.5 ", text, count=1)
+    text = re.sub(r"lengths_mm = \[[^\]]*\]",
+                  "lengths_mm = [4.5, 5.0, 6.0, 7.0, 7.5, 6.0, 7.5, 7.0, 6.5, 5.5]", text)
+    made.design.write_text(text, encoding="utf-8")
+    monkeypatch.chdir(made.folder)
+    assert main(["evaluate", "--design", made.design.name, "--json"]) == 0
+    out = strict_json(capsys.readouterr().out)
+    plan = tactcad.load(made.design).plan
+    rated = rated_full_scale_force(plan)
+    yield_N = {r["element"]: r["yield_limited_force_N"] for r in strength_summary(plan)}
+    top = {}
+    for s in out["samples"]:
+        for e in s["elements"]:
+            top[e["element"]] = max(top.get(e["element"], 0.0), max(e["tip_force_N"]))
+    past_rating = [n for n, f in top.items() if f > rated]
+    past_yield = [n for n, f in top.items() if f > yield_N[n]]
+    assert past_rating and past_yield
+    for n in past_rating:
+        [line] = [w for w in out["warnings"] if w.startswith(f"evaluate: element {n} carries")]
+        assert f"{top[n]:.3g} N" in line and f"rated full-scale force {rated:.3g} N" in line
+        assert ("yield-limited force" in line) == (n in past_yield)
+    assert out["R_against_load"] == out["fig6"]
+    assert out["R_against_K_m_over_K_obj"] == out["fig7"]
+    assert out["deprecated_keys"] == {"fig6": "R_against_load", "fig7": "R_against_K_m_over_K_obj"}
+    assert main(["evaluate", "--design", made.design.name, "--quiet"]) == 0
+    assert "carries up to" not in capsys.readouterr().err

@@ -208,10 +208,55 @@ def weights_for_samples(plan, rigs, rated_N: float, samples) -> str:
             f"{weights_setting(plan, rated_N, samples, rigs.source or 'rigs.toml')}")
 
 
+#: Slack on a waiver's recorded values: they are stated to 3 significant digits.
+WAIVER_SLACK = 0.005
+
+
+def stale_waiver(rigs, element_load_N: float, rated_N: float) -> str:
+    """Why the rigs' ``[evaluation] beyond_rating_reason`` no longer keeps the rig ("" where
+    it does): the reason keeps only the overload it was judged for, its
+    ``beyond_rating_load_N`` (N, the most loaded element's tip force) and
+    ``beyond_rating_rated_N`` (N, the rating then); a load above the one or a rating below
+    the other (0.5 % allowed for values stated to 3 digits), or a reason without them, fails.
+
+    Args:
+        rigs: the design's :class:`~tactcad.design.rig_plan.RigDesign`.
+        element_load_N: the most loaded element's tip force now (N).
+        rated_N: the design's rated full-scale force now (N).
+
+    Returns:
+        The words naming the reason, the values it accepted, the values now and what to do.
+    """
+    from pathlib import Path
+
+    file = Path(rigs.source or "rigs.toml").name
+    todo = (f"judge the overload for this design again, then state [evaluation] "
+            f"beyond_rating_load_N = {element_load_N:.3g}, beyond_rating_rated_N = "
+            f"{rated_N:.3g} in {file}, or lighter weights and no beyond_rating_reason")
+    accepted_load, accepted_rating = rigs.beyond_rating_load_N, rigs.beyond_rating_rated_N
+    if accepted_load is None or accepted_rating is None:
+        return ("[evaluation] beyond_rating_reason is bound to no load (it states no "
+                "beyond_rating_load_N and beyond_rating_rated_N it was judged for), so it "
+                f"cannot keep this rig: {todo}")
+    changes = []
+    if element_load_N > accepted_load * (1 + WAIVER_SLACK):
+        changes.append(f"the load on an element is {element_load_N:.3g} N now, "
+                       f"beyond the {accepted_load:g} N it accepted")
+    if rated_N < accepted_rating * (1 - WAIVER_SLACK):
+        changes.append(f"the rating is {rated_N:g} N now, below the {accepted_rating:g} N "
+                       "it was judged against")
+    if not changes:
+        return ""
+    return (f"[evaluation] beyond_rating_reason of {file} (judged for {accepted_load:g} N on "
+            f"an element, rated {accepted_rating:g} N) no longer keeps this rig: "
+            f"{' and '.join(changes)}; {todo}")
+
+
 def evaluation_load_check(plan, rigs, rated_N: float, samples_after=None) -> CheckResult:
     """Fails when the evaluation rig's top load puts more than ``rated_N`` (N)
     on an element, or states no preload; a rig kept beyond the rating
-    (``[evaluation] beyond_rating_reason``) passes, saying so. A failure names the weights
+    (``[evaluation] beyond_rating_reason``) passes, saying so, while the overload is
+    within what the reason was judged for (:func:`stale_waiver`), else fails naming it. A failure names the weights
     to set, sized for ``samples_after`` (N/mm: the samples once check's suggestions are
     pasted, :func:`kit_after_suggestion`; None: the rigs' own)."""
     from tactcad.studies.rig_sizing import evaluation_rig_load
@@ -230,6 +275,9 @@ def evaluation_load_check(plan, rigs, rated_N: float, samples_after=None) -> Che
     text += f" (EXCEEDS the rating by {100 * (load.element_load_N / rated_N - 1):.0f} %)"
     reason = rigs.beyond_rating_reason
     if reason:
+        stale = stale_waiver(rigs, load.element_load_N, rated_N)
+        if stale:
+            return CheckResult("rig load", subject, False, f"{text}; {stale}")
         return CheckResult("rig load", subject, True, f"{text}; kept: {reason}")
     samples = list(samples_after) if samples_after is not None else \
         list(rigs.sample_stiffness_N_per_mm)

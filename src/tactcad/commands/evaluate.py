@@ -122,6 +122,44 @@ def warn_samples_outside_range(samples: list[float], kobj_range) -> None:
                           "is shown, not rated)", PastRatingWarning, stacklevel=2)
 
 
+def warn_tip_forces_past_limits(plan, report: dict) -> None:
+    """Warn (one line per element) where the evaluation's loads put a tip force past the
+    element's rating (the design's rated full-scale force) or its yield-limited force,
+    naming the element, the largest tip force (N), the sample (N/mm) and load (N) it is
+    at, and the limits (N).
+
+    Args:
+        plan: the design's plan.
+        report: :func:`tactcad.mechanics.evaluation.evaluation_report`'s record (N, N/mm).
+    """
+    import warnings
+
+    from tactcad.errors import PastRatingWarning
+    from tactcad.studies.reference_loads import strength_summary
+    from tactcad.studies.verification import rated_full_scale_force
+
+    rated = rated_full_scale_force(plan)
+    yield_N = {r["element"]: r["yield_limited_force_N"] for r in strength_summary(plan)}
+    top: dict[int, tuple[float, float, float]] = {}
+    for sample in report["samples"]:
+        for e in sample["elements"]:
+            for load, force in zip(sample["loads_N"], e["tip_force_N"]):
+                if force > top.get(e["element"], (-math.inf,))[0]:
+                    top[e["element"]] = (force, sample["K_obj_N_per_mm"], load)
+    for element, (force, k_obj, load) in sorted(top.items()):
+        limit = yield_N.get(element)
+        past = ([f"its yield-limited force {limit:.3g} N"] if limit is not None
+                and force > limit * (1 + 1e-9) else [])
+        if force > rated * (1 + 1e-9):
+            past.insert(0, f"the rated full-scale force {rated:.3g} N "
+                           f"(by {100 * (force / rated - 1):.0f} %)")
+        if past:
+            warnings.warn(f"evaluate: element {element} carries up to {force:.3g} N (K_obj "
+                          f"{k_obj:g} N/mm at {load:.4g} N), past {' and '.join(past)}: its "
+                          "R there is a reading past full scale", PastRatingWarning,
+                          stacklevel=2)
+
+
 def parse_stiffness_list(field: str, text: str) -> list[float]:
     """Comma-separated stiffnesses (N/mm), each finite and > 0.
 
@@ -187,6 +225,7 @@ def run(args: argparse.Namespace) -> int:
                                   loads_N=loads, references=rows,
                                   **({} if paper else {"fig6_sample": middle}))
     report["load_steps_from"] = source
+    warn_tip_forces_past_limits(plan, report)
     if not paper:
         report["full_scale_force_N"] = force
     if args.plot:
@@ -194,11 +233,12 @@ def run(args: argparse.Namespace) -> int:
 
         title = (f"{plan.name}: R against K_m/K_obj ({args.coupling} sample, K from "
                  f"{args.stiffness}, reference element {report['reference_element']})")
-        report["plot"] = str(plot_ratio_map(report["fig7"], args.plot, title))
+        report["plot"] = str(plot_ratio_map(report["R_against_K_m_over_K_obj"], args.plot,
+                                            title))
     if args.plot_fig6:
         from tactcad.paper.figures import plot_ratio_vs_load
 
-        fig6 = report["fig6"]
+        fig6 = report["R_against_load"]
         report["plot_fig6"] = str(plot_ratio_vs_load(
             fig6["loads_N"], {f"element {k}": v for k, v in fig6["R"].items()}, args.plot_fig6,
             f"{plan.name}: R against grasping force, K_obj = {fig6['K_obj_N_per_mm']:g} N/mm "
@@ -217,7 +257,7 @@ def _print_text(report: dict) -> None:
                   f"(K_r = {report['K_r_N_per_mm']:.4g} N/mm)")
     print(f"design {report['design']}: sample model {report['coupling']}, {which}")
     numbers = [e["element"] for e in report["elements"]]
-    first = report["fig6"]["loads_N"][0]
+    first = report["R_against_load"]["loads_N"][0]
     print(f"load steps: {report['load_steps_from']}")
     print(f"R at the first load step ({first:.4g} N); rows: K_obj (N/mm), columns: element")
     print("    K_obj  " + "".join(f"{n:>9d}" for n in numbers) + "    E (MPa)")

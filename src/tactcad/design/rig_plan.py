@@ -46,7 +46,8 @@ class RigDesign:
         library: every rig part's derived data (:mod:`tactcad.partlib`), by
             its key, in :attr:`RigPart.order <tactcad.partlib.base.RigPart>`.
         derived: the parts' derived dimensions with their reasons, in that order.
-        evaluation_preload_N, beyond_rating_reason: ``[evaluation]``
+        evaluation_preload_N, beyond_rating_reason, beyond_rating_load_N,
+            beyond_rating_rated_N: ``[evaluation]``
             (:class:`EvaluationSection`; None where left out).
     """
 
@@ -60,6 +61,8 @@ class RigDesign:
     library: Mapping[str, PartData] = field(default_factory=dict)
     evaluation_preload_N: float | None = None
     beyond_rating_reason: str | None = None
+    beyond_rating_load_N: float | None = None
+    beyond_rating_rated_N: float | None = None
 
     def part(self, key: str) -> Any:
         """The geometry (the data its builder reads) of part module ``key``.
@@ -96,10 +99,16 @@ class EvaluationSection(Section):
     ``beyond_rating_reason``: why a rig that loads an element beyond the
     design's rated full-scale force is kept (``check`` then passes it, saying
     so); left out, such a rig fails.
+    ``beyond_rating_load_N``, ``beyond_rating_rated_N``: what the reason was judged for,
+    the most loaded element's tip force (N) and the design's rated full-scale force (N)
+    then; the reason keeps the rig only while the load stays at most the one and the
+    rating at least the other, so an edited design does not pass on a stale reason.
     """
 
     preload_N: Optional[number(0.0, 1e4, unit="N")] = None
     beyond_rating_reason: Optional[Text] = None
+    beyond_rating_load_N: Optional[number(0.0, 1e4, unit="N")] = None
+    beyond_rating_rated_N: Optional[number(0.0, 1e4, unit="N")] = None
 
 
 #: The tables of the rigs file that are not a part's.
@@ -207,7 +216,9 @@ def validate_rigs(data: Mapping[str, Any], plan: Plan,
         name=r.rigs.name, description=r.rigs.description, source=file, rigs_hash=rigs_hash(data),
         calibration_element=cal, derived=tuple(d for part in library.values() for d in part.derived),
         assumptions=assumptions, library=library, evaluation_preload_N=r.evaluation.preload_N,
-        beyond_rating_reason=r.evaluation.beyond_rating_reason), p
+        beyond_rating_reason=r.evaluation.beyond_rating_reason,
+        beyond_rating_load_N=r.evaluation.beyond_rating_load_N,
+        beyond_rating_rated_N=r.evaluation.beyond_rating_rated_N), p
 
 
 def rigs_from_dict(data: Mapping[str, Any], plan: Plan, source: str = "<dict>",

@@ -274,6 +274,11 @@ def _rig_record(res: RigResult, spec: SampleSpec, face_mm: tuple[float, float]) 
     }
 
 
+#: The evaluation report's renamed keys, old -> new: the old ones (the paper's figure
+#: numbers) are written too, as duplicates, and listed in ``deprecated_keys``.
+EVALUATION_RENAMED = {"fig6": "R_against_load", "fig7": "R_against_K_m_over_K_obj"}
+
+
 def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec: SampleSpec,
                       n_steps: int = DEFAULT_LOAD_STEPS, fig6_sample: float = 3.85,
                       loads_N=None, references: Mapping[int, int] | None = None) -> dict:
@@ -295,7 +300,11 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
     Returns:
         dict with the reference element, the elements' K and K_r/K_m, one
         record per sample (loads, body travel, and per element R, deflection,
-        tip force per step), ``fig6`` and ``fig7`` series.
+        tip force per step), the ``R_against_load`` series (R of each element against
+        the grasping force (N) on one sample; the paper's Fig. 6) and the
+        ``R_against_K_m_over_K_obj`` series (R of each element against K_m/K_obj; the
+        paper's Fig. 7), also under their deprecated names ``fig6`` and ``fig7``, listed
+        in ``deprecated_keys``.
 
     Raises:
         ContactError: no sample, a stiffness <= 0, bad spec.
@@ -324,7 +333,7 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
              "K_m_over_K_obj": [e.stiffness_N_per_mm / s for s in samples],
              "R": [float(r.ratio[0, list(r.elements).index(e.number)]) for r in results]}
             for e in measuring]
-    return {
+    report = {
         "design": plan.name,
         "coupling": spec.coupling,
         "poisson_ratio": spec.poisson_ratio if spec.coupling != "none" else None,
@@ -337,8 +346,15 @@ def evaluation_report(plan, stiffness: dict[int, float], samples_N_per_mm, spec:
                       **({} if references is None else {"reference_element": own[e.number]}),
                       "tip_x_mm": e.punch.x_mm, "tip_z_mm": e.punch.z_mm} for e in elements],
         "samples": records,
-        "fig6": {"K_obj_N_per_mm": samples[fig6_index], "loads_N": loads.tolist(),
-                 "R": {str(e["element"]): e["R"] for e in records[fig6_index]["elements"]
-                       if e["element"] not in refs}},
-        "fig7": fig7,
+        "R_against_load": {"K_obj_N_per_mm": samples[fig6_index], "loads_N": loads.tolist(),
+                           "R": {str(e["element"]): e["R"]
+                                 for e in records[fig6_index]["elements"]
+                                 if e["element"] not in refs}},
+        "R_against_K_m_over_K_obj": fig7,
+        # the paper's figure numbers, the keys' old names: duplicates, to go in a later release
+        **{old: None for old in EVALUATION_RENAMED},
+        "deprecated_keys": dict(EVALUATION_RENAMED),
     }
+    for old, new in EVALUATION_RENAMED.items():
+        report[old] = report[new]
+    return report
