@@ -14,7 +14,7 @@ from tactcad.studies.inverse_design import Targets
 
 @pytest.fixture(scope="module")
 def plan():
-    return md.die_plan(Targets(8.0, (0.3, 3.0), 0.007), jaw_room("5"), columns=3)
+    return md.die_plan(Targets(8.0, (0.3, 3.0), 0.0065), jaw_room("5"), columns=3)
 
 
 def test_the_beams_are_the_dies_rows_and_slender_corners_of_its_layer(plan):

@@ -22,7 +22,7 @@ def test_an_unsettled_contact_names_the_slab_thickness_given():
 
 def test_a_dies_grasp_on_a_slab_too_thin_to_settle_names_the_option(tmp_path):
     made = run_cli("design", "--jaw", "5", "--kr-over-km", "8", "--kobj-range", "0.4", "4",
-                   "--full-scale-force", "0.008", "--out", "mydie", cwd=tmp_path)
+                   "--full-scale-force", "0.0075", "--out", "mydie", cwd=tmp_path)
     assert made.returncode == 0, made.stdout + made.stderr
     r = run_cli("grasp", "--slab-thickness-mm", "0.001", "--profile", "slab", "--json",
                 cwd=tmp_path / "mydie")
@@ -53,7 +53,7 @@ def test_a_dies_grasp_at_a_default_too_thin_names_the_option(tmp_path, monkeypat
     from tactcad.products.silicon_die.in_use import die_grasp
 
     made = run_cli("design", "--jaw", "5", "--kr-over-km", "8", "--kobj-range", "0.4", "4",
-                   "--full-scale-force", "0.008", "--out", "mydie", cwd=tmp_path)
+                   "--full-scale-force", "0.0075", "--out", "mydie", cwd=tmp_path)
     assert made.returncode == 0, made.stdout + made.stderr
     monkeypatch.setattr(die_grasp, "DEFAULT_SLAB_MM", 0.001)  # a default too thin to settle
     r = run_cli("grasp", "--profile", "slab", "--json", cwd=tmp_path / "mydie")

@@ -72,7 +72,7 @@ def test_stiffness_of_an_array_still_needs_its_element(tmp_path):
 
 def test_design_for_a_5mm_jaw_writes_a_die_project_folder(tmp_path):
     argv = ("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.05", "0.5",
-            "--full-scale-force", "0.002", "--out", "palp-die")
+            "--full-scale-force", "0.0019", "--out", "palp-die")
     r = run_cli(*argv, cwd=tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     folder = tmp_path / "palp-die"
@@ -188,7 +188,7 @@ def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):
 
 def test_design_for_a_die_takes_max_grasp_force_or_pastes_the_jaws_reach(tmp_path):
     argv = ("design", "--jaw", "5", "--kr-over-km", "10", "--kobj-range", "0.05", "0.5",
-            "--full-scale-force", "0.002", "--out", "gripped")
+            "--full-scale-force", "0.0019", "--out", "gripped")
     far = run_cli(*argv, "--max-grasp-force", "50", "--json", cwd=tmp_path)
     assert far.returncode == 2 and not (tmp_path / "gripped").exists()
     error = json.loads(far.stdout)["error"]
