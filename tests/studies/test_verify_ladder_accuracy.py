@@ -269,10 +269,10 @@ def _stress_asked(monkeypatch, by_level):
 
     asked = {}
     monkeypatch.setattr(v, "prefetch_top_level",
-                        lambda plan, level, progress, peak_stress=False:
+                        lambda plan, level, progress, peak_stress=False, parts=None:
                         asked.setdefault(level, {}).update(prefetched_stress=peak_stress) or 0)
 
-    def matrix(plan, level, progress, req, stress, envelope):
+    def matrix(plan, level, progress, req, stress, envelope, **kept):
         asked.setdefault(level, {}).update(stress=stress)
         return [dict(r) for r in by_level[level]]
 
@@ -353,3 +353,164 @@ def test_k_r_over_k_m_climbing_alone_gives_the_records_the_full_matrix_gives(tmp
     assert "fem2d" in asked
     assert json.dumps(records, sort_keys=True, default=str) == \
         json.dumps(full, sort_keys=True, default=str)
+
+
+def _domain_plan(tmp_path, seed):
+    """A random design of the domain (as test_random_designs draws it), requirements derived."""
+    import random
+
+    import tomli_w
+
+    from tactcad.api import load
+    from tactcad.design.domain import draw_design
+
+    rng = random.Random(seed)
+    data = draw_design(rng.uniform, rng.choice, name=f"domain{seed}")
+    for section in ("files", "requirements"):
+        data.pop(section, None)
+    design = tmp_path / f"domain{seed}.toml"
+    design.write_text(tomli_w.dumps(data), encoding="utf-8")
+    return load(str(design)).plan
+
+
+def _counting_solves(monkeypatch):
+    """Record (part, level) of every K estimate and every stress asked for."""
+    from tactcad.mechanics import ladder
+    from tactcad.studies.strength_studies import element_stress
+
+    solved, asked = [], []
+    estimate = ladder.estimate
+
+    def counted(model, g, material, **kw):
+        solved.append((g.part_name, model))
+        return estimate(model, g, material, **kw)
+
+    def stress(g, material, model):
+        asked.append((g.part_name, model))
+        return element_stress(g, material, model)
+
+    monkeypatch.setattr(ladder, "estimate", counted)
+    return solved, asked, stress
+
+
+def test_a_level_climbed_for_the_full_scale_force_alone_solves_only_its_undecided_elements(
+        tmp_path, monkeypatch):
+    # seed 2001 of test_random_designs: the closed form leaves the full-scale force alone
+    # open (besides the grid's power density, alike at every level), one element of four
+    # inside its error; the next level solves that element alone, and the records equal
+    # those of every element solved there: verdicts, the figure that binds and its error
+    from tactcad.studies import verification as v
+
+    plan = _domain_plan(tmp_path, 2001)
+    levels = ("closed-form", "beam")
+    closed = v.verification_matrix(plan, "closed-form")
+    assert {r["requirement"] for r in closed if r["verdict"] == "undecided"
+            and not r["level_fixed"]} == {"full_scale_force_N"}
+    force = next(r for r in closed if r["requirement"] == "full_scale_force_N")
+    binding_part = plan.slots[[s.number for s in plan.slots].index(
+        force["binding_element"])].geometry.part_name
+    solved, asked, stress = _counting_solves(monkeypatch)
+    records, spent = v.verification_auto(plan, stress=stress, levels=levels)
+    at_beam = {part for part, model in solved if model == "beam"}
+    assert at_beam == {binding_part}, solved
+    assert {part for part, model in asked if model == "beam"} == {binding_part}, asked
+    others = set(plan.distinct_elements) - {binding_part}
+    assert spent[-1]["model"] == "beam" and set(spent[-1]["elements_kept"]) == others
+    rec = next(r for r in records if r["requirement"] == "full_scale_force_N")
+    assert rec["element_levels"] == {**{p: "closed-form" for p in others},
+                                     binding_part: "beam"}
+    assert {lim["level"] for lim in rec["limits"]} <= {"closed-form", "beam"}
+
+    # every element solved at every level: the same verdicts and the same binding figure
+    monkeypatch.setattr(v, "elements_decided_below", lambda *a, **k: frozenset())
+    del solved[:]
+    full, full_spent = v.verification_auto(plan, stress=stress, levels=levels)
+    assert {part for part, model in solved if model == "beam"} == set(plan.distinct_elements)
+    assert full_spent[-1]["elements_kept"] == []
+    assert [(r["requirement"], r["verdict"], r["decided_by"]) for r in records] == \
+        [(r["requirement"], r["verdict"], r["decided_by"]) for r in full]
+    whole = next(r for r in full if r["requirement"] == "full_scale_force_N")
+    assert "element_levels" not in whole
+    for key in ("predicted", "margin_rel", "error_estimate_rel", "binding_element",
+                "binding_limit", "model", "verdict"):
+        assert rec[key] == whole[key], key
+
+
+def test_an_open_requirement_reading_k_still_solves_every_element(tmp_path, monkeypatch):
+    # the same design with K_r/K_m also left open below: a level climbed for it is not
+    # judged from a partly solved level, so every element is solved
+    from tactcad.studies import verification as v
+
+    plan = _domain_plan(tmp_path, 2001)
+    matrix = v.verification_matrix
+
+    def kr_open(plan, level, *a, **k):
+        out = matrix(plan, level, *a, **k)
+        if level == "closed-form":
+            for r in out:
+                if r["requirement"] == "kr_over_km":
+                    r["verdict"] = "undecided"
+        return out
+
+    monkeypatch.setattr(v, "verification_matrix", kr_open)
+    solved, _, stress = _counting_solves(monkeypatch)
+    _, spent = v.verification_auto(plan, stress=stress, levels=("closed-form", "beam"))
+    assert spent[-1]["undecided_before"] is not None
+    assert {"kr_over_km", "full_scale_force_N"} <= set(spent[-1]["undecided_before"])
+    assert spent[-1]["elements_kept"] == []
+    assert {part for part, model in solved if model == "beam"} == set(plan.distinct_elements)
+
+
+def test_elements_decided_below_keeps_the_elements_clearing_the_force_by_their_error():
+    # stubbed figures: part a clears 10 N by +30 % against its 10 % error, part b by
+    # +5 % (inside it): b alone is solved; with K_r/K_m open too, neither is kept
+    from types import SimpleNamespace
+
+    from tactcad.mechanics.limits import ForceLimit
+    from tactcad.studies import verification as v
+
+    limits = [ForceLimit("yield", 1, "a", 13.0, 0.1, ""),
+              ForceLimit("travel", 1, "a", 20.0, 0.1, ""),
+              ForceLimit("yield", 2, "b", 10.5, 0.1, ""),
+              ForceLimit("travel", 2, "b", 30.0, 0.1, "")]
+    plan = SimpleNamespace(distinct_elements={"a": None, "b": None})
+    req = SimpleNamespace(full_scale_force_N=10.0)
+    below = object()
+    force = {"requirement": "full_scale_force_N", "verdict": "undecided", "level_fixed": False}
+    power = {"requirement": "grid_power_density_W_per_mm2", "verdict": "undecided",
+             "level_fixed": True}
+    kr = {"requirement": "kr_over_km", "verdict": "undecided", "level_fixed": False}
+    rows = {r["requirement"]: r for r in (force, power, kr)}
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(v, "figures_limits", lambda plan, fig: limits)
+        assert v.elements_decided_below(plan, below, rows, ["full_scale_force_N",
+                                        "grid_power_density_W_per_mm2"], req) == {"a"}
+        assert v.elements_decided_below(plan, below, rows, ["full_scale_force_N",
+                                                            "kr_over_km"], req) == frozenset()
+        assert v.elements_decided_below(plan, None, rows, ["full_scale_force_N"], req) == \
+            frozenset()
+        # a force decided (here failed) by a less accurate level: not judged part by part
+        rows["full_scale_force_N"] = {**force, "verdict": "fail", "less_accurate_than": "x"}
+        assert v.elements_decided_below(plan, below, rows, ["full_scale_force_N"], req) == \
+            frozenset()
+        # both elements inside their error: nothing kept
+        limits[0] = ForceLimit("yield", 1, "a", 10.2, 0.1, "")
+        rows["full_scale_force_N"] = force
+        assert v.elements_decided_below(plan, below, rows, ["full_scale_force_N"], req) == \
+            frozenset()
+
+
+def test_a_binding_limit_kept_from_below_is_not_ranked_against_the_open_record():
+    # the kept limit clears the force by its own (lower level's) error: its record is not
+    # "less accurate" than the one left open, where a limit solved at the level would be
+    from tactcad.studies import verification as v
+
+    kept = {"model": "fem3d", "element_levels": {"a": "fem2d", "b": "fem3d"},
+            "limits": [{"part": "a", "binding": True, "level": "fem2d"},
+                       {"part": "b", "binding": False, "level": "fem3d"}]}
+    assert v.binds_below(kept)
+    solved = {**kept, "limits": [{"part": "a", "binding": False, "level": "fem2d"},
+                                 {"part": "b", "binding": True, "level": "fem3d"}]}
+    assert not v.binds_below(solved)
+    assert not v.binds_below({"model": "fem3d", "limits": [{"binding": True}]})

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace as _replaced
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -117,14 +117,22 @@ class Figures:
     k_error: dict[str, float]
     stresses: dict[str, Any]
     by_element: dict[int, str]
+    #: per part whose figures a lower level made (kept by :func:`verification_auto`), that
+    #: level; a part not listed was solved at ``model``
+    kept_from: dict[str, str] = field(default_factory=dict)
 
     def k_of(self, number: int) -> float:
         return self.k[self.by_element[number]]
 
+    def level_of(self, part: str) -> str:
+        """The level whose figures part ``part`` carries (``model`` unless kept from below)."""
+        return self.kept_from.get(part, self.model)
+
 
 def element_figures(plan: Plan, model: str = "closed-form",
                     progress: Callable[[str], None] | None = None,
-                    stress: Callable | None = None) -> Figures:
+                    stress: Callable | None = None, below: Figures | None = None,
+                    keep: Collection[str] = ()) -> Figures:
     """K (Richardson at FEM levels), its error estimate and the peak stress of
     every distinct element of ``plan`` at ``model``.
 
@@ -132,6 +140,13 @@ def element_figures(plan: Plan, model: str = "closed-form",
         stress: (geometry, material, model) -> ElementStress; default the
             closed form's (closed form and beam). The FEM levels pass
             :func:`tactcad.studies.strength_studies.element_stress`.
+        below: a lower level's figures; the parts named in ``keep`` take theirs (K in
+            N/mm, its error, the stress) and are not solved at ``model``
+            (:attr:`Figures.kept_from` says which level made them).
+        keep: part names kept from ``below`` (empty: every part solved at ``model``).
+
+    Returns:
+        The :class:`Figures` (K in N/mm, relative errors, stresses per N).
 
     Raises:
         ValueError: an FEM model without ``stress``.
@@ -147,8 +162,15 @@ def element_figures(plan: Plan, model: str = "closed-form",
         stress = closed_form_stress
     element_stress = stress
 
-    k, k_err, st = {}, {}, {}
+    if keep and below is None:
+        raise ValueError(f"keep {sorted(keep)}: pass the lower level's figures (below)")
+    k, k_err, st, kept_from = {}, {}, {}, {}
     for name, g in plan.distinct_elements.items():
+        if name in keep:
+            k[name], k_err[name], st[name] = below.k[name], below.k_error[name], \
+                below.stresses[name]
+            kept_from[name] = below.level_of(name)
+            continue
         if progress:
             progress(f"{model}: {name}")
         opts = {"progress": progress} if progress and is_meshed(model) else {}
@@ -156,7 +178,36 @@ def element_figures(plan: Plan, model: str = "closed-form",
         k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
         # the gauge strain the grid reads (strength, limits and read-out quote one)
         st[name] = at_the_grid(element_stress(g, plan.material, model), g, plan)
-    return Figures(model, k, k_err, st, {s.number: s.geometry.part_name for s in plan.slots})
+    return Figures(model, k, k_err, st, {s.number: s.geometry.part_name for s in plan.slots},
+                   kept_from)
+
+
+def figures_limits(plan: Plan, fig: Figures) -> list:
+    """Every force limit of every element (:func:`tactcad.mechanics.limits.plan_limits`),
+    each part's at the level whose figures it carries (:meth:`Figures.level_of`: a part
+    kept from a lower level keeps that level's limits and errors), in the plan's order.
+
+    Args:
+        plan: the design. fig: its figures (N/mm, relative errors, stresses per N).
+
+    Returns:
+        The :class:`~tactcad.mechanics.limits.ForceLimit` list (N).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    from tactcad.mechanics.limits import plan_limits
+
+    levels = {fig.level_of(part) for part in plan.distinct_elements}
+    if levels == {fig.model}:
+        return plan_limits(plan, fig.model, fig.stresses, fig.k_error)
+    order = sorted(levels)
+    by_level = [plan_limits(plan, lv, fig.stresses, fig.k_error) for lv in order]
+    # the same slots and kinds in the same order at every level: each from its part's level
+    out = []
+    for same in zip(*by_level):
+        out.extend(lim for lv, lim in zip(order, same) if fig.level_of(lim.part_name) == lv)
+    return out
 
 
 def web_band_rel(plan: Plan) -> float:
@@ -738,7 +789,9 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                         progress: Callable[[str], None] | None = None,
                         requirements: Requirements | None = None,
                         stress: Callable | None = None,
-                        envelope_mm: Sequence[float] | None = None) -> list[dict]:
+                        envelope_mm: Sequence[float] | None = None,
+                        below: Figures | None = None, keep: Collection[str] = (),
+                        figures_made: list | None = None) -> list[dict]:
     """One record per requirement, evaluated at ``model``.
 
     margin_rel: predicted / target - 1 for a lower bound (full-scale force,
@@ -749,14 +802,20 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     The full-scale-force record lists every limit (``limits``) and the one
     that binds (``binding_limit``). ``stress``: as :func:`element_figures`
     (an FEM level needs :func:`tactcad.studies.strength_studies.element_stress`).
+    ``below``, ``keep``: as :func:`element_figures`: the parts named in ``keep`` keep a lower
+    level's figures and limits (with its errors); each listed limit then says its ``level``
+    and the full-scale record its ``element_levels`` (part -> level). ``figures_made``: a
+    list the level's :class:`Figures` is appended to (for the next level's ``below``).
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
         DesignError: the material has no yield strength.
     """
-    from tactcad.mechanics.limits import LIMIT_WORDS, binding, per_kind_binding, plan_limits
+    from tactcad.mechanics.limits import LIMIT_WORDS, binding, per_kind_binding
 
-    fig = element_figures(plan, model, progress, stress)
+    fig = element_figures(plan, model, progress, stress, below, keep)
+    if figures_made is not None:
+        figures_made.append(fig)
     # the web band and K error, read by the derived K band requirement as well: once
     band, error = web_band_rel(plan), closed_form_k_error(plan)
     # the units and their resolutions, read by the derived K_obj resolution as well: once
@@ -764,15 +823,21 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     req = requirements or requirements_of(plan, fig, k_band=(band, error), units=units,
                                           kept=kept)
     out = []
-    lims = plan_limits(plan, model, fig.stresses, fig.k_error)
+    lims = figures_limits(plan, fig)
     b = binding(lims)
     kinds = per_kind_binding(lims)
     F = req.full_scale_force_N
+    # a part kept from a lower level: each limit and the record say which level made it
+    levels = ({part: fig.level_of(part) for part in plan.distinct_elements}
+              if fig.kept_from else None)
     out.append(_record("full_scale_force_N", F, b.force_N, b.error_estimate_rel,
                        b.force_N / F - 1.0, model, b.force_N >= F,
                        binding_limit=b.limit, binding_words=LIMIT_WORDS[b.limit],
                        binding_element=b.element,
-                       limits=[lim.as_json(lim is b) for lim in kinds.values()]))
+                       limits=[{**lim.as_json(lim is b),
+                                **({"level": levels[lim.part_name]} if levels else {})}
+                               for lim in kinds.values()],
+                       **({"element_levels": levels} if levels else {})))
     out.append(kr_over_km_record(row_pairs(plan, fig), req, model))
     out.append(_record("k_tolerance_rel", req.k_tolerance_rel, band, error,
                        req.k_tolerance_rel / band - 1.0 if band > 0 else math.inf,
@@ -1225,17 +1290,19 @@ LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
                "max_crosstalk_rel", GRID_POWER_REQUIREMENT)
 
 def prefetch_top_level(plan: Plan, model: str, progress: Callable[[str], None] | None = None,
-                       peak_stress: bool = False) -> int:
+                       peak_stress: bool = False, parts: Collection[str] | None = None) -> int:
     """At the ladder's dearest level, the distinct elements not yet kept in the store solved
     side by side, one process each (:mod:`tactcad.studies.parallel_solves`), for the matrix
     to read back; with ``peak_stress`` their peak-stress sequences too (a matrix given its
     ``stress`` reads them); the processes used (0 at any other level, or when nothing is
-    to solve)."""
+    to solve). ``parts``: the part names the level solves (default every distinct element;
+    :func:`elements_decided_below` keeps the others' lower-level figures)."""
     from tactcad.studies.parallel_solves import solve_side_by_side, top_of_the_ladder
 
     if not top_of_the_ladder(model):
         return 0
-    return solve_side_by_side(model, list(plan.distinct_elements.values()), plan.material,
+    return solve_side_by_side(model, [g for name, g in plan.distinct_elements.items()
+                                      if parts is None or name in parts], plan.material,
                               progress, peak_stress=peak_stress)
 
 
@@ -1267,13 +1334,22 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     (:func:`unread_stress` stands for ``stress``): what reads one was decided below it, so the
     records returned are those the full matrix of every level gives.
 
+    A level climbed for a per-element strength requirement alone (:data:`PER_ELEMENT_STRENGTH`,
+    the others still open fixed alike at every level) solves only the elements whose figures
+    below do not clear it by their error (:func:`elements_decided_below`); the others keep
+    the lower level's figures and errors, the record saying each part's level
+    (``element_levels``; each listed limit its ``level``). The verdict is still the margin
+    against the error of the figure that binds. With a requirement that reads K open
+    (K_r/K_m, the K_obj rows, ...) every element is solved.
+
     Args:
         stress: as :func:`verification_matrix` (needed once a FEM level runs).
         levels: the ladder to climb; default every level, cheapest first.
 
     Returns:
-        (records in the matrix's order, [{"model", "seconds", "undecided_before"}]
-        per level run).
+        (records in the matrix's order, [{"model", "seconds", "undecided_before",
+        "elements_kept"}] per level run; ``elements_kept`` the part names whose lower-level
+        figures the level kept, empty when it solved every element).
     """
     import time
 
@@ -1288,23 +1364,34 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     # other level tried listed beside it: a level less accurate than it (a larger error
     # estimate) does not decide it, and it is the row shown when no level decides it
     open_at: dict[str, dict] = {}
+    below: Figures | None = None  # the last level's figures
+    records_below: dict[str, dict] = {}  # and its records
     for i, level in enumerate(ladder):
         open_before = [k for k in order if k not in chosen] if order else None
         t0 = time.perf_counter()
         # a level whose open requirements read K alone solves no peak stress: the records
         # that read one were decided below it, and its own are not kept
         read = stress if stress is None or not reads_k_alone(open_before) else unread_stress
+        # climbed for a per-element strength alone: the elements decided below are kept
+        keep = elements_decided_below(plan, below, records_below, open_before, req)
+        solve = None if not keep else [name for name in plan.distinct_elements
+                                       if name not in keep]
         prefetch_top_level(plan, level, progress,
-                           peak_stress=stress is not None and read is stress)
-        records = verification_matrix(plan, level, progress, req, read, envelope_mm)
+                           peak_stress=stress is not None and read is stress, parts=solve)
+        made: list[Figures] = []
+        records = verification_matrix(plan, level, progress, req, read, envelope_mm,
+                                      below=below, keep=keep, figures_made=made)
+        below = made[0] if made else None
+        records_below = {r["requirement"]: r for r in records}
         spent.append({"model": level, "seconds": time.perf_counter() - t0,
-                      "undecided_before": open_before})
+                      "undecided_before": open_before, "elements_kept": sorted(keep)})
         order = order or [r["requirement"] for r in records]
         top = i == len(ladder) - 1
         for r in records:
             before = open_at.get(r["requirement"])
+            # a figure kept from below that binds clears the requirement by its own error
             if r["verdict"] != "undecided" and before is not None \
-                    and less_accurate(r, before):
+                    and less_accurate(r, before) and not binds_below(r):
                 r["less_accurate_than"] = before["model"]
         # a record another level computes the same way (the K band is always the
         # closed form's) cannot be decided by climbing: it stays undecided
@@ -1328,6 +1415,71 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
         if len(chosen) == len(order):
             break
     return [chosen[k] for k in order], spent
+
+
+#: Requirements whose figure is the least over the elements of each one's own figures, read
+#: from that element's K and stress alone (the full-scale force: every limit of every
+#: element), so a level may solve only the elements a lower level left undecided.
+PER_ELEMENT_STRENGTH = ("full_scale_force_N",)
+
+
+def elements_decided_below(plan: Plan, below: Figures | None, records_below: Mapping[str, dict],
+                           open_requirements: Sequence[str] | None,
+                           requirements: Requirements) -> frozenset[str]:
+    """The parts the next level need not solve: when every requirement still open is a
+    per-element strength (:data:`PER_ELEMENT_STRENGTH`) or one computed alike at every level
+    (``level_fixed``), and the last level left each such strength undecided, the parts all
+    of whose force limits there (:func:`figures_limits`) clear the full-scale force by their
+    own error (margin >= error, :func:`tactcad.mechanics.verdicts.verdict` ``pass``).
+    Otherwise none (a requirement reading K, or one a less accurate level decided, is not
+    judged from a partly solved level), nor when no part clears.
+
+    Args:
+        plan: the design. below: the last level's figures (None before the first level).
+        records_below: its records by requirement. open_requirements: those no level
+            decided (None before the first). requirements: the design's (the force, N).
+
+    Returns:
+        The part names kept from ``below`` (empty: every element is solved).
+    """
+    if below is None or not open_requirements:
+        return frozenset()
+    strength = [k for k in open_requirements if k in PER_ELEMENT_STRENGTH]
+    if not strength:
+        return frozenset()
+    for key in open_requirements:
+        r = records_below.get(key)
+        if r is None:
+            return frozenset()
+        if key in PER_ELEMENT_STRENGTH:
+            if r["verdict"] != "undecided" or "less_accurate_than" in r:
+                return frozenset()
+        elif not r.get("level_fixed"):
+            return frozenset()
+    force = requirements.full_scale_force_N
+    parts = set(plan.distinct_elements)
+    cleared = set(parts)
+    for lim in figures_limits(plan, below):
+        if verdict(lim.force_N / force - 1.0, lim.error_estimate_rel, 0.0,
+                   lim.force_N >= force) != "pass":
+            cleared.discard(lim.part_name)
+    return frozenset(cleared) if cleared != parts else frozenset()
+
+
+def binds_below(record: dict) -> bool:
+    """Whether ``record``'s binding limit was kept from a level below the record's own
+    (``limits`` with their ``level``, :func:`verification_auto`).
+
+    Args:
+        record: a verification record.
+
+    Returns:
+        True for a binding limit whose ``level`` is not the record's ``model``.
+    """
+    if not record.get("element_levels"):  # every element solved at the record's level
+        return False
+    bound = next((lim for lim in record.get("limits", ()) if lim.get("binding")), None)
+    return bound is not None and bound.get("level", record["model"]) != record["model"]
 
 
 #: Requirements whose record at a level reads no stress of that level: K_r/K_m (the rows'
