@@ -81,7 +81,7 @@ def test_a_labs_jaw_file_is_copied_into_the_project_with_its_comments(tmp_path):
     lab.write_text("# our drawing PP-8-002, rev C\n" + source.read_text(encoding="utf-8"),
                    encoding="utf-8")
     made = run_cli("design", "--jaw", lab, "--construction", "mems-die", "--kr-over-km", "10",
-                   "--kobj-range", "0.3", "3", "--full-scale-force", "0.01", "--columns", "8",
+                   "--kobj-range", "0.3", "3", "--full-scale-force", "0.0098", "--columns", "8",
                    "--out", tmp_path / "probe", "--quiet")
     assert made.returncode == 0, made.stderr[-500:]
     copied = tmp_path / "probe" / "probe_jaw.toml"
