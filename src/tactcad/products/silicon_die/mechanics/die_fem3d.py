@@ -284,8 +284,7 @@ def mesh_dofs(plan, beam, divisions: tuple[int, int, int] = DIVISIONS,
 
     def count(d: tuple[int, int, int]) -> int:
         mesh, _ = _mesh(plan, beam, d, frame)
-        return 3 * (mesh.p.shape[1] + mesh.edges.shape[1] + mesh.facets.shape[1]
-                    + mesh.t.shape[1])
+        return 3 * (mesh.nvertices + mesh.nedges + mesh.nfacets + mesh.nelements)
     return count(divisions), count(tuple(2 * d for d in divisions))
 
 
