@@ -416,9 +416,10 @@ def test_a_comb_points_f1_is_the_first_frequency_modal_reports_with_the_gauge(ca
 
 
 def test_a_die_points_max_force_is_the_largest_rating_strength_reports_on_its_file(tmp_path):
-    """``max_force_N`` of a die is the least of its rating limits (an on-stop failure
-    probability may bind before the in-use one ``verify`` names): ``tactcad strength
-    --json``'s ``largest_rating_N`` on the die ``design`` writes, and the API's."""
+    """``max_force_N`` of a die is the least of its rating limits with their model errors'
+    room (an on-stop failure probability may bind before the in-use one ``verify`` names):
+    ``tactcad strength --json``'s ``largest_rating_N`` on the die ``design`` writes, and the
+    API's, above the rating ``design`` accepted and below the nominal least limit."""
     import tactcad
 
     atlas = jaw_atlas("5", [(DIE, SILICON)])
@@ -434,3 +435,5 @@ def test_a_die_points_max_force_is_the_largest_rating_strength_reports_on_its_fi
     assert strength["largest_rating_N"] == pytest.approx(record["max_force_N"], rel=1e-12)
     assert "on its deepest stop" in strength["largest_rating_binds"]
     assert tactcad.load(written).strength()["largest_rating_N"] == strength["largest_rating_N"]
+    assert strength["largest_rating_N"] < strength["largest_rating_nominal_N"]
+    assert record["max_force_N"] >= record["full_scale_force_N"]

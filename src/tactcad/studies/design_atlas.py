@@ -432,18 +432,18 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
 
 def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
     """A feasible die's figures, as design plans it; design's verdict otherwise: its K_obj
-    resolution (relative, the read-out noise term), the largest rating its limits allow
-    (``max_force_N``, N: the least of
-    :func:`~tactcad.products.silicon_die.design.mems_die.rating_limits`, in use and on its
-    stops, what ``tactcad strength --json`` reports as ``largest_rating_N`` on the written
-    die), its beams' lowest first resonance (Hz, ``tactcad modal``'s) and its SOI device
-    layer (um).
+    resolution (relative, the read-out noise term), the largest rating it verifies
+    (``max_force_N``, N: the least of its rating limits, in use and on its stops, each with
+    its model error's room,
+    :func:`~tactcad.products.silicon_die.design.mems_die.largest_verified_rating`; what
+    ``tactcad strength --json`` reports as ``largest_rating_N`` on the written die), its
+    beams' lowest first resonance (Hz, ``tactcad modal``'s) and its SOI device layer (um).
 
     Raises:
         RefusedPoint: the die's own refusal.
     """
     from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.design.mems_die import rating_limits
+    from tactcad.products.silicon_die.design.mems_die import largest_verified_rating
     from tactcad.products.silicon_die.mechanics.die_dynamics import first_resonance_Hz
     from tactcad.products.silicon_die.studies.die_doping import (doped_die_plan,
                                                                  worst_readout_error_rel)
@@ -454,7 +454,7 @@ def die_figures(atlas: JawAtlas, targets, columns: int) -> dict:
     except DesignError as exc:
         raise refusal_of(exc) from None
     return {"kobj_resolution_rel": float(worst_readout_error_rel(plan)),
-            "max_force_N": float(min(force for force, _ in rating_limits(plan))),
+            "max_force_N": float(largest_verified_rating(plan)[0]),
             "lowest_first_Hz": float(min(first_resonance_Hz(plan, b) for b in plan.beams)),
             "layer_um": float(plan.stack.device_um)}
 

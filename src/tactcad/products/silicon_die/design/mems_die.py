@@ -1314,6 +1314,25 @@ def rating_limit_errors(plan: DiePlan) -> list[float]:
     return _rating_limit_errors(_plan_rating(plan))
 
 
+def largest_verified_rating(plan: DiePlan) -> tuple[float, str, float]:
+    """The largest rating ``plan``'s die, as drawn, verifies: the least over its limits
+    (:func:`rating_limits`) of limit / (1 + error) (:func:`rating_limit_errors`), the
+    rating past which ``verify`` leaves a limit undecided and ``design`` refuses.
+
+    Args:
+        plan: the die (:class:`DiePlan`).
+
+    Returns:
+        (the rating (N), what binds it (words), the nominal least limit (N): the same
+        limits without their model error's room).
+    """
+    limits = rating_limits(plan)
+    room = [(limit / (1.0 + error), words)
+            for (limit, words), error in zip(limits, rating_limit_errors(plan))]
+    force, binds = min(room, key=lambda limit: limit[0])
+    return force, binds, min(limit for limit, _ in limits)
+
+
 def _within_limits(rating: _Rating, post_um: float) -> bool:
     """Whether ``rating`` is within every limit with its model's error to spare: F (1 + e)
     below each limit (its margin, limit / F - 1, larger than e), so that ``verify`` passes

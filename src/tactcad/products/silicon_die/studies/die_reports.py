@@ -80,13 +80,15 @@ def die_beam_fem3d_kept(plan, beam, reused: Callable[[str], None] | None = None,
 def strength_report(plan) -> tuple[dict, list[str]]:
     """Each row's beam root at the force it carries in use against the mean strength of
     etched silicon (and the lab's Weibull pair's failure probability, when stated), with the
-    rated-force requirement and the largest rating the die's limits allow (``largest_rating_N``,
-    the least of :func:`~tactcad.products.silicon_die.design.mems_die.rating_limits`, with
-    what binds it: the rating ``design`` refuses past, and the design atlas's
-    ``max_force_N``): (report, text lines). MPa, N, um."""
+    rated-force requirement and the largest rating the die verifies (``largest_rating_N``,
+    :func:`~tactcad.products.silicon_die.design.mems_die.largest_verified_rating`: each limit
+    with its model error's room, with what binds it: the rating ``design`` refuses past, and
+    the design atlas's ``max_force_N``; ``largest_rating_nominal_N`` the least limit without
+    that room): (report, text lines). MPa, N, um."""
     from tactcad.products.silicon_die.design.mems_die import (BOSCH_MEAN_STRENGTH_MPA,
                                                               BOSCH_STRENGTH_SOURCE,
-                                                              ROOT_KT_SOURCE, rating_limits)
+                                                              ROOT_KT_SOURCE,
+                                                              largest_verified_rating)
     from tactcad.products.silicon_die.mechanics.die_strength import beam_failure_probability
 
     rated = next(r for r in die_verification(plan) if r["requirement"] == "full_scale_force_N")
@@ -109,11 +111,12 @@ def strength_report(plan) -> tuple[dict, list[str]]:
                      "failure_probability_at_rated_force":
                          None if plan.weibull is None
                          else beam_failure_probability(plan, beam, force)})
-    largest, binds = min(rating_limits(plan), key=lambda limit: limit[0])
+    largest, binds, nominal = largest_verified_rating(plan)
     report = {"die": plan.name, "model": "closed-form",
               "strength_MPa": BOSCH_MEAN_STRENGTH_MPA, "strength_source": BOSCH_STRENGTH_SOURCE,
               "rows": rows, "requirement": rated, "passed": rated["verdict"] != "fail",
               "largest_rating_N": largest, "largest_rating_binds": binds,
+              "largest_rating_nominal_N": nominal,
               "reasons": {"root_stress": "the root's peak on its fillets' top edge: K_t x "
                                          "6 F L / (w t^2), the beam's nominal surface "
                                          f"bending stress at the root, K_t of its "
@@ -139,8 +142,9 @@ def strength_report(plan) -> tuple[dict, list[str]]:
                      + ("n/a (no Weibull pair: state [strength])" if p_f is None
                         else f"{p_f:.3g}") + " |")
     lines += [report["reasons"]["root_stress"], matrix_table([rated]),
-              f"largest rating within every limit of the die: {largest:.4g} N "
-              f"({largest / plan.full_scale_force_N:.3g} x the rating; bound by {binds})"]
+              f"largest rating within every limit of the die by its model error: "
+              f"{largest:.4g} N ({largest / plan.full_scale_force_N:.3g} x the rating; bound "
+              f"by {binds}; {nominal:.4g} N at the limit itself)"]
     return report, lines
 
 
