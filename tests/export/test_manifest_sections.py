@@ -31,6 +31,15 @@ def test_the_manifest_keeps_its_keys_in_order_and_adds_the_shop():
     assert facts["shop"]["element_a6p196mm"]["process"] == "wire-edm"
 
 
+def test_an_arrays_manifest_names_its_product_as_a_dies_does():
+    # one layout for every product's manifest: a script reads "product" from each
+    from tactcad.products import products
+
+    facts = design_facts(load_design(TI))
+    default = next(p.name for p in products() if p.is_default)
+    assert list(facts)[:2] == ["design", "product"] and facts["product"] == default
+
+
 def test_a_registered_section_and_a_kind_section_appear(monkeypatch):
     monkeypatch.setattr(manifest, "MANIFEST_SECTIONS", dict(MANIFEST_SECTIONS))
     register_section(ManifestSection("summary", f"{__name__}:front_matter"))

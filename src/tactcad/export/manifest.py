@@ -72,7 +72,7 @@ def manifest_sections() -> list[ManifestSection]:
 
 
 #: The keys that come before the files.
-HEAD = ("design", "tactcad_version", "cad_stack", "units")
+HEAD = ("design", "product", "tactcad_version", "cad_stack", "units")
 #: The keys the export run writes itself: the files, and what the export was made from
 #: (:func:`tactcad.export.jobs.export_inputs`).
 WRITTEN_BY_RUN = ("files", "inputs")
@@ -115,11 +115,15 @@ def design_facts(plan: Plan) -> dict:
 
 def _facts_of(plan: Plan) -> dict:
     """:func:`design_facts` worked out (every section's function run)."""
+    from tactcad.products import products
+
     head = {
         # the file's name only: an export names files relative to the project
         # folder, never by a path of the machine it was made on
         "design": {"name": plan.name, "source": Path(plan.source).name,
                    "sha256": plan.design_hash},
+        # named as every product's manifest names it, so one script reads each kind's
+        "product": next(p.name for p in products() if p.is_default),
         "tactcad_version": VERSION,
         "cad_stack": stack_versions(),
         "units": "mm",
