@@ -271,6 +271,21 @@ def test_a_jaw_file_of_any_name_is_read_as_toml(tmp_path):
 
 
 @pytest.mark.slow  # a whole comb search through the command line
+def test_a_jaw_file_whose_name_has_a_space_is_quoted_wherever_its_command_is_written(tmp_path):
+    """The header and the reasons both write ``tactcad design --jaw FILE``: each pastes into a
+    shell as one word for the file, and the design stays valid TOML."""
+    import shlex
+
+    _, written = design_for_jaw_file(tmp_path, "lab jaw.cfg", "pocket_width_mm = 5.0\n")
+    reason = written["assumptions"]["sheet.thickness_mm"]
+    command = reason.split(":", 1)[0]
+    assert shlex.split(command) == ["tactcad", "design", "--jaw", "lab jaw.cfg"], reason
+    header = (tmp_path / "insert.toml").read_text(encoding="utf-8").splitlines()[0]
+    words = shlex.split(header.split("`")[1])
+    assert words[words.index("--jaw") + 1] == str(tmp_path / "lab jaw.cfg")
+
+
+@pytest.mark.slow  # a whole comb search through the command line
 def test_a_tapered_jaws_outline_bounds_each_sheets_comb(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "taper.toml", "pocket_outline_mm = [[4.0, -2.75], "
                                      "[33.0, -2.25], [33.0, 2.25], [4.0, 2.75]]\n")
@@ -302,6 +317,36 @@ def test_more_columns_than_the_pocket_holds_name_the_columns_and_the_sheet_eithe
     error = json.loads(r.stdout)["error"]
     assert (error["field"], error["value"], error["limit"]) == ("--columns", 7, "sheet")
     assert [a["option"] for a in error["alternatives"]] == ["--columns 6"]
+
+
+@pytest.mark.parametrize("columns", ["13", "50"])
+def test_more_columns_than_any_comb_takes_pastes_the_most_the_pocket_holds(tmp_path, columns):
+    """Past the grid's range (1 ... 12) the comb's refusal still pastes a column count: the
+    most whose comb the pocket holds (the grasper case's 6, which designs), not nothing."""
+    r = run_cli(*GRASPER_CASE[:-1], columns, "--full-scale-force", "0.05", "--jaw", "10",
+                "--construction", "monolithic-comb", "--out", str(tmp_path / "x.toml"),
+                "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert (error["field"], error["value"]) == ("--columns", int(columns))
+    assert "1 ... 12 for a monolithic comb" in error["allowed"]
+    assert [a["option"] for a in error["alternatives"]] == [f"--columns {GRASPER_CASE[-1]}"]
+    assert "the pocket holds" in error["alternatives"][0]["words"]
+    assert not list(tmp_path.iterdir())
+
+
+def test_a_comb_asked_too_few_columns_pastes_the_fewest_it_takes():
+    from tactcad.design.array_plan import EXAMPLES, read_toml
+    from tactcad.errors import DesignError
+    from tactcad.partlib.grasper_jaw import jaw_room
+    from tactcad.studies.comb_design import check_comb_columns
+    from tactcad.studies.inverse_design import Targets
+
+    base = read_toml(EXAMPLES / "grasper_jaw_10mm/grasper_jaw_10mm.toml", "design file")
+    targets = Targets(kr_over_km=10.0, k_obj_range_N_per_mm=(0.5, 5.0), full_scale_force_N=0.05)
+    with pytest.raises(DesignError) as refused:
+        check_comb_columns(0, jaw_room("10"), base, targets)
+    assert [a["option"] for a in refused.value.alternatives] == ["--columns 1"]
 
 
 def test_a_comb_as_the_layout_searchs_base_is_refused_naming_the_jaw_option(tmp_path):

@@ -263,9 +263,16 @@ def test_the_clamp_bolt_refusal_offers_only_changes_that_mend_it(capsys):
         capsys.readouterr()
 
 
-def test_stiffness_help_says_which_levels_a_die_takes(capsys):
-    """A die refuses beam and fem2d: the help of --model says so."""
+def test_stiffness_help_says_which_levels_a_die_and_a_comb_take(capsys):
+    """A die refuses beam and fem2d, a comb's element takes every level of the ladder: the
+    help of --model says both, from the ladder and the die's levels."""
+    from tactcad.mechanics.ladder import models
+    from tactcad.products.silicon_die.mechanics import DIE_STIFFNESS_LEVELS
+
     with pytest.raises(SystemExit):
         cli.main(["stiffness", "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    assert "beam, fem2d: an array only (a silicon die: closed-form, fem3d)" in text
+    assert ("a stacked array's and a monolithic comb's element: "
+            + ", ".join(models())) in text
+    assert "a silicon die's beams: " + ", ".join(DIE_STIFFNESS_LEVELS) + " (not beam, fem2d)" \
+        in text

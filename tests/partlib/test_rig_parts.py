@@ -4,6 +4,7 @@ bought parts with catalogue data, the samples' stiffness attributes."""
 from __future__ import annotations
 
 import copy
+import json
 import math
 import re
 
@@ -161,6 +162,33 @@ def test_the_indenter_drawing_note_gives_the_designs_own_face(tip_width_mm):
     g = rig_parts(project.plan, project.validated.rigs)["indenter"].geometry
     note = " ".join(notes_after(g, PEN))
     assert f"the {tip_width_mm:g} x 2.5 mm face lies flat" in note and "2 x 3 mm" not in note
+
+
+@pytest.mark.parametrize("ear", ["2.5", "6"])
+def test_a_clamp_bolt_too_short_offers_what_also_clamps_the_rigs_own_ear(tmp_path, ear):
+    """The array's own clamp bolt too short for 10 mm plates: the plates offered are tried
+    with the bracket ear of the project's own rigs file (not the default rigs' 2.5 mm), so
+    that pasting them loads the project, rigs and all."""
+    import shlex
+    import shutil
+
+    from conftest import run_cli
+    from tactcad.design.array_plan import EXAMPLES
+
+    folder = tmp_path / "ti"
+    shutil.copytree(EXAMPLES / "ti_array_2x3", folder)
+    rigs = folder / "rigs.toml"
+    rigs.write_text(re.sub(r"(?m)^ear_thickness_mm = .*$", f"ear_thickness_mm = {ear}",
+                           rigs.read_text(encoding="utf-8")), encoding="utf-8")
+    r = run_cli("scenes", "--set", "clamp.plate_thickness_mm=10", "--json", cwd=folder)
+    assert r.returncode == 2, r.stdout
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "array.columns" and "bolt needs" in error["message"], error
+    plates = [a["option"] for a in error["alternatives"] if "plate_thickness" in a["option"]]
+    assert plates == [{"2.5": "--set clamp.plate_thickness_mm=7",
+                       "6": "--set clamp.plate_thickness_mm=5.3"}[ear]], error["alternatives"]
+    pasted = run_cli("scenes", *shlex.split(plates[0]), cwd=folder)
+    assert pasted.returncode == 0, pasted.stderr
 
 
 @pytest.mark.parametrize("columns, arms, fewer", [

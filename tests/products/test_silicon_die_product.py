@@ -247,6 +247,25 @@ def test_a_thin_robotic_jaw_gets_the_die_where_no_comb_fits(tmp_path):
     assert run_cli("verify", cwd=tmp_path / "robot").returncode == 0
 
 
+def test_a_dies_jaw_file_with_a_space_in_its_name_is_quoted_in_its_reason(tmp_path):
+    """``[assumptions] die.jaw`` writes the command that chose the die: its jaw file, named
+    with a space, pastes into a shell as one word; the design stays valid TOML."""
+    import shlex
+    import tomllib
+
+    (tmp_path / "our jaw.toml").write_text(
+        "[grasper_jaw]\nshaft_class_mm = \"10\"\nwidth_mm = 4.0\nlength_mm = 20.0\n"
+        "thickness_mm = 2.5\npin_diameter_mm = 1.5\npin_inset_mm = 2.0\n"
+        "opening_angle_deg = 45.0\n", encoding="utf-8")
+    r = run_cli("design", "--jaw", "our jaw.toml", "--construction", "mems-die",
+                "--kr-over-km", "10", "--kobj-range", "0.05", "0.5", "--full-scale-force",
+                "0.002", "--out", "robot.toml", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    written = tomllib.loads((tmp_path / "robot.toml").read_text(encoding="utf-8"))
+    command = written["assumptions"]["die.jaw"].split(":", 1)[0]
+    assert shlex.split(command) == ["tactcad", "design", "--jaw", "our jaw.toml"], command
+
+
 #: an 8 mm wristed instrument's 2.6 mm jaw (the shipped robotic example's), as a table
 ROBOT_JAW = {"shaft_diameter_mm": 8.0, "width_mm": 4.2, "length_mm": 16.0,
              "thickness_mm": 2.6, "opposing_jaw_mm": 2.6, "pin_diameter_mm": 1.5,

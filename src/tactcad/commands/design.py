@@ -785,7 +785,7 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
     if jaw_file:  # the lab's jaw beside the die's file: a sensor folder reads only itself
         stated = f"{path.stem}_jaw.toml"
     why = [one_refusal_line(n, e) for n, e in refusals]
-    reasons = {"die.jaw": (f"tactcad design --jaw {Path(args.jaw).name}: "
+    reasons = {"die.jaw": (f"tactcad design --jaw {shlex.quote(Path(args.jaw).name)}: "
                            + ("; ".join(why) if why else "a silicon die asked for") + "."),
                "die.kr_over_km": "The ratio asked (--kr-over-km).",
                "die.kobj_range_N_per_mm": "The range asked (--kobj-range).",

@@ -11,7 +11,26 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, p
 from tactcad.commands.options import (check_element_option, element_number, keep_option_defaults,
                                       number, output_folder)
 from tactcad.errors import DesignError, TactcadError
+from tactcad.products.silicon_die.mechanics import DIE_STIFFNESS_LEVELS
 
+
+def stiffness_levels_words(ladder: tuple[str, ...], die_levels: tuple[str, ...]) -> str:
+    """Which stiffness levels each construction's element takes, for ``--model``'s help:
+    a stacked array's and a monolithic comb's element (a flexure of the plan's element
+    geometry) every level of the ladder, a silicon die's beams its own.
+
+    Args:
+        ladder: the ladder's levels, cheapest first (:func:`tactcad.mechanics.ladder.models`).
+        die_levels: the die's levels (:data:`DIE_STIFFNESS_LEVELS`).
+
+    Returns:
+        The words, e.g. ``a stacked array's and a monolithic comb's element: closed-form,
+        beam, fem2d, fem3d; a silicon die's beams: closed-form, fem3d (not beam, fem2d)``.
+    """
+    not_die = [n for n in ladder if n not in die_levels]
+    return (f"a stacked array's and a monolithic comb's element: {', '.join(ladder)}; "
+            f"a silicon die's beams: {', '.join(n for n in ladder if n in die_levels)}"
+            + (f" (not {', '.join(not_die)})" if not_die else ""))
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -25,8 +44,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "along row 1, then row 2; required for an array; a silicon die gives "
                         "each row's beam)")
     p.add_argument("--model", choices=models(), default="closed-form",
-                   help=f"ladder level: {levels_help()} (default %(default)s); beam, fem2d: "
-                        "an array only (a silicon die: closed-form, fem3d)")
+                   help=f"ladder level: {levels_help()} (default %(default)s); "
+                        f"{stiffness_levels_words(models(), DIE_STIFFNESS_LEVELS)}")
     add_design_arg(p)
     add_cache_args(p)
     add_output_args(p, "print JSON")

@@ -26,10 +26,12 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterator, Mapping
 
 from pydantic import create_model
 
@@ -734,9 +736,9 @@ def _check_bolt_length(d: DesignFile, p: Problems) -> None:
     bolt = BOLTS[d.clamp.bolt_size]
     if length is None:  # offer only the changes that pass this rule and the others
 
-        # tried with the default rigs' bracket ear too, which the bracket bolt grips as well
+        # tried with the rigs' bracket ear too, which the bracket bolt grips as well
         allowed, alternatives = clamp_fix_offers(d.model_dump(exclude_none=True, by_alias=True),
-                                            _default_bracket_ear_mm())
+                                                 bracket_ear_mm())
         p.errors.append(DesignError(
             "array.columns", d.array.columns, allowed,
             f"bolt needs {fmt(why.value)} mm, longest stock {bolt.size} is "
@@ -750,6 +752,53 @@ def _default_bracket_ear_mm() -> float:
 
     with open(DEFAULT_DESIGN.parent / "rigs.toml", "rb") as fh:
         return float(tomllib.load(fh)["bracket"]["ear_thickness_mm"])
+
+
+#: The bracket ear (mm) of the rigs the design being validated goes with, while its project
+#: validates it (:func:`rigs_bracket_ear`); None: no rigs of its own known (the default
+#: rigs' ear, :func:`_default_bracket_ear_mm`).
+_RIGS_EAR_MM: ContextVar[float | None] = ContextVar("rigs_ear_mm", default=None)
+
+
+@contextmanager
+def rigs_bracket_ear(ear_mm: float | None) -> Iterator[None]:
+    """Within it, a clamp bolt too short for its stack is offered only the changes that
+    also clamp the bracket ear ``ear_mm`` (mm) of the design's own rigs (None: the default
+    rigs' ear).
+
+    Args:
+        ear_mm: ``[bracket] ear_thickness_mm`` of the design's rigs file (mm), or None.
+    """
+    token = _RIGS_EAR_MM.set(ear_mm)
+    try:
+        yield
+    finally:
+        _RIGS_EAR_MM.reset(token)
+
+
+def bracket_ear_mm() -> float:
+    """The bracket ear (mm) a clamp refusal's offers are tried with: the design's own rigs'
+    (:func:`rigs_bracket_ear`), else the default rigs'."""
+    ear = _RIGS_EAR_MM.get()
+    return _default_bracket_ear_mm() if ear is None else ear
+
+
+def stated_ear_mm(rigs: Mapping[str, Any] | None) -> float | None:
+    """The bracket ear a rigs file's tables state (mm), or None when they state none that
+    reads as a thickness (the rigs' own validation refuses it; the default rigs' ear is
+    tried meanwhile).
+
+    Args:
+        rigs: the rigs file's raw tables, or None (no rigs file).
+
+    Returns:
+        ``[bracket] ear_thickness_mm`` as a float (mm), or None.
+    """
+    bracket = rigs.get("bracket") if isinstance(rigs, Mapping) else None
+    ear = bracket.get("ear_thickness_mm") if isinstance(bracket, Mapping) else None
+    if isinstance(ear, bool) or not isinstance(ear, (int, float)):
+        return None
+    return float(ear) if math.isfinite(ear) and ear > 0 else None
 
 
 def half_length(d: DesignFile) -> float:

@@ -26,7 +26,8 @@ from string import Template
 from typing import Any, Callable, Iterable, Iterator, Mapping
 
 from tactcad.design.array_plan import (DEFAULT_DESIGN, Plan, plan_from_model,
-                                       stacked_columns_error, validate_design)
+                                       rigs_bracket_ear, stacked_columns_error,
+                                       stated_ear_mm, validate_design)
 from tactcad.design.construction_registry import construction_of
 from tactcad.design.rig_plan import DEFAULT_RIGS, RigDesign, validate_rigs
 from tactcad.vocabulary.schema import Problems, content_hash, fmt, read_toml, unprintable
@@ -137,6 +138,16 @@ def _read(path: Path, what: str, problems: Problems) -> Mapping[str, Any] | None
         exc.file = path.name
         problems.extend([DesignError(exc.field, exc.value, exc.allowed, exc.why, path.name)])
         return None
+
+
+def _rigs_ear_mm(rigs_file: Path | None) -> float | None:
+    """The bracket ear (mm) the rigs file at ``rigs_file`` states
+    (:func:`~tactcad.design.array_plan.stated_ear_mm`), read before the design is
+    validated; None when there is no file or it states none (its own refusal comes when
+    the rigs are validated)."""
+    if rigs_file is None:
+        return None
+    return stated_ear_mm(_read(rigs_file, "rigs file", Problems(rigs_file.name)))
 
 
 def _check_sample_stiffness(scenes: Mapping[str, SceneSpec], rigs: RigDesign,
@@ -259,7 +270,8 @@ def project_from_data(design: Mapping[str, Any] | None, rigs: Mapping[str, Any] 
         (plan, rigs, scenes), any of them None when refused; every refusal is
         added to ``problems``.
     """
-    plan = _plan_of(design, source, problems)
+    with rigs_bracket_ear(stated_ear_mm(rigs)):  # a clamp's offers clamp these rigs' ear
+        plan = _plan_of(design, source, problems)
     return (plan, *_companions_of(plan, rigs, scenes, problems, rigs_file, scenes_file))
 
 
@@ -395,7 +407,8 @@ def project_with_design_data(data: Mapping[str, Any] | None, path: Path,
     problems = problems if problems is not None else Problems(path.name)
     files = companion_files(path, data, problems)
     named = _named(data)
-    plan = _plan_of(data, str(path), problems, set_keys)
+    with rigs_bracket_ear(_rigs_ear_mm(files["rigs"])):  # a clamp's offers clamp its ear
+        plan = _plan_of(data, str(path), problems, set_keys)
     if plan is not None and not construction_of(plan).test_rigs and named["rigs"] is None:
         # nothing to hold them: a rigs.toml that only lies beside it (another
         # design's, in a shared folder) is not this project's

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import functools
 import math
+import shlex
 import threading
 from collections import OrderedDict
 from contextlib import contextmanager
@@ -1038,11 +1039,70 @@ def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str
         DesignError: ``--columns`` out of 1 ... 12.
     """
 
+    check_comb_columns(columns, room, base, targets, grade, process)
     base = searched_base(base, columns, process)
     with candidates_weighed():  # the candidates are not the design asked about
         tried = [candidate(base, sheet, scale, columns, room, targets, grade, envelope_of,
                            progress) for sheet in sheets_of(base) for scale in KM_SCALES]
     return base, tried
+
+
+#: Why a comb's column count is bounded, as its refusal says it.
+COMB_COLUMNS_WHY = "the grid's range (array.columns)"
+
+
+def most_comb_columns(room: Any, base: Mapping[str, Any], targets: Targets,
+                      grade: str | None = None, process: str | None = None) -> dict:
+    """The column count to paste for a comb asked more columns than any comb takes: the
+    most of the grid's range where the jaw's pocket holds that comb's length, else the
+    most the pocket holds (:func:`comb_misfit`'s own paste, at the least pitch).
+
+    Args:
+        room: the jaw's room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+        base: the comb template's tables. targets: the targets (N/mm, N).
+        grade: the material grade (None: the base's). process: the rows' cut process
+            (None: the base's).
+
+    Returns:
+        An alternative: ``option`` (``--columns N``) and ``words`` (why that count).
+    """
+    from tactcad.design.array_plan import COLUMNS_RANGE
+    from tactcad.vocabulary.binding_limits import SHEET
+
+    hi = COLUMNS_RANGE[1]
+    misses = comb_misfit(room, hi, base, targets, grade, process)
+    fewer = [m["option"] for m in misses if m.get("limit") == SHEET and m.get("option")]
+    if fewer and len(misses) == 1:
+        return {"option": fewer[0],
+                "words": "the most columns of the monolithic comb the pocket holds"}
+    if not misses:
+        return {"option": f"--columns {hi}",
+                "words": "the most columns a monolithic comb takes, which the pocket holds"}
+    return {"option": f"--columns {hi}", "words": "the nearest count a monolithic comb takes"}
+
+
+def check_comb_columns(columns: int, room: Any, base: Mapping[str, Any], targets: Targets,
+                       grade: str | None = None, process: str | None = None) -> None:
+    """Refuse ``--columns`` outside :data:`tactcad.design.array_plan.COLUMNS_RANGE` for a
+    comb to the jaw's ``room``, offering the count to paste: too many, the most the pocket
+    holds (:func:`most_comb_columns`); too few, the fewest a comb takes.
+
+    Args:
+        columns: the columns asked. room, base, targets, grade, process: as
+            :func:`most_comb_columns`.
+
+    Raises:
+        DesignError: ``--columns`` out of range, with its ``--columns`` to paste.
+    """
+    from tactcad.design.array_plan import COLUMNS_RANGE
+
+    lo, hi = COLUMNS_RANGE
+    if lo <= columns <= hi:
+        return
+    paste = (most_comb_columns(room, base, targets, grade, process) if columns > hi else
+             {"option": f"--columns {lo}", "words": "the nearest count a monolithic comb takes"})
+    raise DesignError("--columns", columns, f"{lo} ... {hi} for a monolithic comb",
+                      COMB_COLUMNS_WHY, alternatives=[paste])
 
 
 def searched_base(base: Mapping[str, Any], columns: int, process: str | None = None) -> dict:
@@ -1056,8 +1116,11 @@ def searched_base(base: Mapping[str, Any], columns: int, process: str | None = N
 
     lo, hi = COLUMNS_RANGE
     if not lo <= columns <= hi:
+        nearest = min(max(columns, lo), hi)
         raise DesignError("--columns", columns, f"{lo} ... {hi} for a monolithic comb",
-                          "the grid's range (array.columns)")
+                          COMB_COLUMNS_WHY,
+                          alternatives=[{"option": f"--columns {nearest}",
+                                         "words": "the nearest count a monolithic comb takes"}])
     base = copy_tables(dict(base))
     base["requirements"] = {}  # the template's own grasp is its jaw's, not this design's
     if process is not None:
@@ -2543,7 +2606,8 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
     searched = sheets_of(d)
     others = [c for c in searched if c != best.sheet_mm]
     why.update({
-        "sheet.thickness_mm": (f"tactcad design --jaw {PurePath(room.option).name}: of "
+        "sheet.thickness_mm": (f"tactcad design --jaw {shlex.quote(PurePath(room.option).name)}"
+                               ": of "
                                f"{', '.join(f'{s:g}' for s in searched)} mm ({process_name(d)}), "
                                + sheet_rule_words(best.force_margin_rel)
                                + f"; tried also {', '.join(f'{s:g}' for s in others)} mm."),

@@ -25,6 +25,7 @@ from typing import Any, Callable
 
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError
+from tactcad.products.silicon_die.mechanics import DIE_STIFFNESS_LEVELS  # the die's ladder
 from tactcad.products.silicon_die.studies.die_reports import DIE_MODAL_LEVELS
 from tactcad.products.silicon_die.studies.die_grasp_report import (  # noqa: F401 (its names)
     die_grasp_record, error_words, rated_words, role_ratings_N)
@@ -38,8 +39,6 @@ DIE_OPTIONS: dict[str, frozenset] = {
     "tolerance": frozenset({"samples", "seed", "kobj", "distribution"})}
 
 
-#: The stiffness levels a die's beams are solved at (the die's ladder).
-DIE_STIFFNESS_LEVELS = ("closed-form", "fem3d")
 #: The ``--model`` levels each die view computes at, by command (crosstalk has its own,
 #: :func:`check_die_crosstalk_level`); ``--model`` left at the array command's default
 #: (``auto`` for verify) is the first.
