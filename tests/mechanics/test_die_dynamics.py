@@ -22,6 +22,21 @@ def plan():
     return die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"))
 
 
+@pytest.fixture(scope="module")
+def calculix(plan):
+    """:func:`dd.calculix_beam_check` of ``plan``'s beams, each mesh solved once per module:
+    the clamped beam's default mesh is asked by two tests (the closed form's and fem3d's),
+    whose CalculiX runs were the same deck twice."""
+    solved = {}
+
+    def check(beam, divisions=dd.FE_DIVISIONS, frame=True):
+        key = (beam.role, tuple(divisions), frame)
+        if key not in solved:
+            solved[key] = dd.calculix_beam_check(plan, beam, tuple(divisions), frame=frame)
+        return solved[key]
+    return check
+
+
 def test_rayleigh_is_within_one_percent_of_the_exact_root_and_above_it(plan):
     for role, m in dd.die_modes(plan).items():
         assert 0.0 < m.rayleigh_error_rel < 0.01, (role, m)  # an upper bound, as it must be
@@ -41,15 +56,15 @@ def test_without_a_post_the_exact_root_is_the_bare_cantilevers(plan):
 
 @pytest.mark.slow  # CalculiX, six solves
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (calculix-ccx) not installed")
-def test_the_closed_form_against_anisotropic_calculix(plan):
+def test_the_closed_form_against_anisotropic_calculix(plan, calculix):
     """The clamped closed form K = E<110> w t^3 / (4 L^3) within 0.5 % of the 3D
     anisotropic model of the beam clamped at its root for both rows
     (the mesh converged: a coarser and the default mesh agree to 0.5 %); the lumped-post
     Rayleigh f1 within 4 % (it leaves out the post's rotary inertia: +3 % on the stiff
     reference beam)."""
     for beam in plan.beams[:: plan.columns]:
-        check = dd.calculix_beam_check(plan, beam, frame=False)
-        coarse = dd.calculix_beam_check(plan, beam, (24, 3, 2), frame=False)
+        check = calculix(beam, frame=False)
+        coarse = calculix(beam, (24, 3, 2), frame=False)
         assert coarse.k_fe_N_per_mm == pytest.approx(check.k_fe_N_per_mm, rel=5e-3)
         assert abs(check.k_error_rel) < 5e-3, check
         assert 0.0 < check.f1_error_rel < 0.04, check
@@ -93,7 +108,7 @@ def test_the_tensor_of_a_turned_crystal_keeps_its_symmetries():
 
 @pytest.mark.slow  # scikit-fem and CalculiX, both rows
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (calculix-ccx) not installed")
-def test_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan):
+def test_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan, calculix):
     """Two FE models of another kind (scikit-fem triquadratic hexahedra, a uniform shear on
     the section, a consistent surface mass for the post; CalculiX C3D8I, nodal loads and
     lumped nodal masses) agree to 1 % in K and f1 on both rows, each converged to 0.1 %."""
@@ -101,7 +116,7 @@ def test_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan):
 
     for beam in plan.beams[:: plan.columns]:
         ours = die_beam_fem3d(plan, beam, frame=False)
-        ccx = dd.calculix_beam_check(plan, beam, frame=False)
+        ccx = calculix(beam, frame=False)
         assert ours.k_error_rel < 1e-3 and ours.f1_error_rel < 1e-3, ours
         assert ours.k_N_per_mm == pytest.approx(ccx.k_fe_N_per_mm, rel=0.01)
         assert ours.f1_Hz == pytest.approx(ccx.f1_fe_Hz, rel=0.01)
