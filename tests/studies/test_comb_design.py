@@ -344,6 +344,52 @@ def test_fewer_columns_are_found_as_the_unbounded_search_finds_them(targets, col
     assert bounded[0] is carries
 
 
+def test_the_fewer_columns_check_reads_a_rating_from_the_limits_without_a_matrix(monkeypatch):
+    """A comb of fewer columns whose closed-form limits rate it carries a force: the
+    refusal's check answers so without its verification matrix (the matrix's full-scale
+    force record reads the same binding limit), most of what a judgement costs."""
+    from tactcad.studies import comb_design, verification
+
+    targets, columns = STOPLESS[1], 8  # the pitch binds 8 columns; fewer carry
+    base, room = comb_design.searched_base(BASE, columns), jaw_room("10")
+    matrices = []
+    matrix = verification.verification_matrix
+
+    def counted(*args, **kwargs):
+        matrices.append(args[0])
+        return matrix(*args, **kwargs)
+
+    monkeypatch.setattr(verification, "verification_matrix", counted)
+    with comb_design.web_solves_kept():
+        assert comb_design.fewer_columns_carry(base, columns, room, targets, TI,
+                                               array_envelope_mm)
+    assert matrices == []
+
+
+@pytest.mark.parametrize("targets, columns, some", [(STOPLESS[1], 7, False),
+                                                    (STOPLESS[1], 4, True),
+                                                    (WIDE_GAPS[2], 2, False),
+                                                    (Targets(10.0, (0.5, 5.0), 0.01), 6, True)])
+def test_whether_a_candidate_carries_is_what_its_judgement_says(targets, columns, some):
+    """:func:`candidate_carries`, reading a rating from the limits where they give one, says
+    of every sheet at every scale what the candidate judged in full says: it counts or is
+    rated for some force."""
+    from tactcad.studies import comb_design
+
+    base, room = comb_design.searched_base(BASE, columns), jaw_room("10")
+    said = []
+    with comb_design.web_solves_kept(), comb_design.candidates_weighed():
+        for sheet in comb_design.sheets_of(base):
+            for scale in comb_design.KM_SCALES:
+                c = comb_design.candidate(base, sheet, scale, columns, room, targets, TI,
+                                          array_envelope_mm, None)
+                judged = bool((c.plan is not None and not c.failures) or c.rated_force_N)
+                assert comb_design.candidate_carries(base, sheet, scale, columns, room,
+                                                     targets, TI, array_envelope_mm) is judged
+                said.append(judged)
+    assert any(said) is some
+
+
 @pytest.mark.parametrize("kr_over_km, kobj, force, columns", [
     (21.267, (2.87533, 18.4831), 0.0620327, 2),
     pytest.param(10.0, (0.5, 5.0), 0.05, 6, marks=pytest.mark.slow),  # six columns: a long search

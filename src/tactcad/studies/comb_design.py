@@ -1452,11 +1452,58 @@ def fewer_columns_carry(base: dict, columns: int, room: Any, targets: Targets,
         for count in sum(other_column_counts(columns), ()):
             for sheet in sheets_of(base):
                 for scale in scales:
-                    c = candidate(base, sheet, scale, count, room, targets, grade,
-                                  envelope_of, None)
-                    if (c.plan is not None and not c.failures) or c.rated_force_N:
+                    if candidate_carries(base, sheet, scale, count, room, targets, grade,
+                                         envelope_of):
                         return True
     return False
+
+
+def candidate_carries(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
+                      targets: Targets, grade: str | None, envelope_of: Callable | None
+                      ) -> bool:
+    """Whether :func:`candidate` counts or is rated for some force, as
+    :func:`fewer_columns_carry` asks it, its verification matrix left out where its
+    closed-form limits already rate it: the rating is the binding limit's force rounded
+    down (:func:`rated_force_N`), and the matrix's full-scale-force record takes that force
+    from the same limits (as :func:`sketched_candidate` reads it), so a candidate whose
+    limits rate it is rated by its judgement.
+
+    Args:
+        base, sheet, km_scale, columns, room, targets, grade, envelope_of: as
+            :func:`candidate` (sheet mm; no progress lines).
+
+    Returns:
+        True when the candidate counts or carries some force (N).
+    """
+    refused, webbed, at = webbed_candidate(base, sheet, km_scale, columns, room, targets,
+                                           grade)
+    d = None
+    if refused is None:
+        refused, d = stopped_candidate(webbed)
+    if refused is not None:
+        return bool((refused.plan is not None and not refused.failures)
+                    or refused.rated_force_N)
+    plan, limits = planned_limits(d)
+    if limits and rated_by_limits(d, limits):
+        return True
+    c = judged_candidate(d, sheet, km_scale, envelope_of, at, plan, limits)
+    return bool((c.plan is not None and not c.failures) or c.rated_force_N)
+
+
+def rated_by_limits(d: dict, limits: list) -> bool:
+    """Whether a candidate's closed-form limits (:func:`planned_limits`, not empty) rate it
+    for some force: the rating :func:`rated_force_N` gives their binding force, where that
+    force is finite (else the rating is worked out from the tables: False here).
+
+    Args:
+        d: the candidate's tables (webs and stops set). limits: its limits (N).
+
+    Returns:
+        True when the rating is a force other than zero.
+    """
+    bound = limits_bound(limits)
+    force = bound.binding_force_N
+    return force is not None and math.isfinite(force) and bool(rated_force_N(d, bound))
 
 
 #: How far above its K target (N/mm) a solved web may leave an element's closed-form K in

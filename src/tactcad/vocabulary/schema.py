@@ -82,15 +82,21 @@ def copy_tables(tables: Any) -> Any:
         The copy (dicts, lists and sets new; tuples new where they hold a table or array).
     """
     kind = type(tables)
+    # a scalar entry is taken as it is without a call for it: most entries are scalars,
+    # and a call each was half the copy's time
     if kind is dict:
-        return {k: copy_tables(v) for k, v in tables.items()}
+        return {k: v if type(v) in _SCALARS else copy_tables(v) for k, v in tables.items()}
     if kind is list:
-        return [copy_tables(v) for v in tables]
-    if kind in (str, int, float, bool) or tables is None:
+        return [v if type(v) in _SCALARS else copy_tables(v) for v in tables]
+    if kind in _SCALARS:
         return tables
     if kind is tuple:
-        return tuple(copy_tables(v) for v in tables)
+        return tuple(v if type(v) in _SCALARS else copy_tables(v) for v in tables)
     return copy.deepcopy(tables)  # anything else TOML does not make: copied as it was
+
+
+#: The scalar types :func:`copy_tables` shares rather than copies (immutable).
+_SCALARS = frozenset((str, int, float, bool, type(None)))
 
 
 def fmt(x: float) -> str:
