@@ -252,9 +252,10 @@ def snapped_footprint(plan, beam) -> PostFootprint:
     does not see the footprint at all, so on one mesh (the sliver's planes kept in both)
     K is the same and f1 moves by 2e-7 (reference beam) and 1e-8 (measuring): far below
     the extrapolation's error, which is left as it is. The mesh without the sliver is a
-    coarser one, whose change the extrapolation carries: coarse-mesh K 0.55 % (divisions
-    (6, 1, 1)) and 0.23 % ((12, 2, 2)) stiffer than with the sliver's planes, halving as
-    the mesh does.
+    coarser one, whose change the extrapolation carries: the reference beam's coarse-mesh K
+    0.55 % (divisions (6, 1, 1)) and 0.23 % ((12, 2, 2)) stiffer than with the sliver's
+    planes, halving as the mesh does; extrapolated, K_r 3.599 N/mm snapped against 3.600
+    unsnapped (+-1.2 % and +-1.1 %), K_m 0.3615 against 0.3616.
 
     Args:
         plan: the die's plan. beam: one of its beams.
