@@ -30,7 +30,7 @@ def test_mesh_dofs_counts_the_solves_unknowns_without_solving():
     assert fine > coarse
 
 
-def test_a_sliver_between_post_and_beam_edges_is_named_with_its_larger_mesh():
+def test_a_sliver_between_post_and_beam_edges_is_named_as_snapped_with_the_closed_mesh():
     from tactcad.products.silicon_die.mechanics.die_fem3d import mesh_dofs
     from tactcad.products.silicon_die.studies.die_reports import fem3d_solving_line
 
@@ -41,8 +41,10 @@ def test_a_sliver_between_post_and_beam_edges_is_named_with_its_larger_mesh():
     assert "inside the beam's" not in plain
     thin = dataclasses.replace(plan, post_um=beam.width_um - 2.0)  # a 1 um sliver each side
     line = fem3d_solving_line(thin, thin.beams[0])
-    assert "1 um inside the beam's" in line
-    assert mesh_dofs(thin, thin.beams[0])[1] > mesh_dofs(plan, beam)[1]
+    assert "1 um inside the beam's snapped onto them" in line
+    closed = dataclasses.replace(plan, post_um=beam.width_um)
+    assert mesh_dofs(thin, thin.beams[0]) == mesh_dofs(closed, closed.beams[0])
+    assert f"{mesh_dofs(closed, beam)[1]:,} unknowns" in line
 
 
 def test_stiffness_fem3d_on_a_die_prints_progress_before_and_during_each_solve(
