@@ -102,8 +102,8 @@ def error_words(error_rel: float | None, bounds_Hz: list[float] | None) -> str:
     if error_rel > PLUS_MINUS_LIMIT_REL and bounds_Hz is not None:
         lo, hi = bounds_Hz
         return (f" between {lo:.1f} and {hi:.1f} Hz: the closed form's bounds, a factor "
-                f"{hi / lo:.3g} apart, its {100 * error_rel:.0f} % error estimate no +/-; "
-                "--model fem3d computes this mode")
+                f"{hi / lo:.3g} apart; its {100 * error_rel:.0f} % error estimate, a formula "
+                "made for close bounds, is no +/- here; --model fem3d computes this mode")
     return f" +/- {100 * error_rel:.1f} %"
 
 
