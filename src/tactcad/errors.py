@@ -32,6 +32,18 @@ def short_repr(value: object, limit: int = MAX_VALUE_CHARS) -> str:
     return f"{text[:limit]}... ({size}{len(text)} characters)"
 
 
+def file_value_repr(value: object, limit: int = MAX_VALUE_CHARS) -> str:
+    """A value read from a TOML file as a refusal echoes it: :func:`short_repr`, with a
+    boolean (in a list too) in TOML's spelling, ``true``/``false``, as the file holds it
+    (Python's ``True`` is no TOML: pasted back it is refused)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (list, tuple)) and any(isinstance(v, bool) for v in value):
+        text = "[" + ", ".join(file_value_repr(v, limit) for v in value) + "]"
+        return text if len(text) <= limit else short_repr(value, limit)
+    return short_repr(value, limit)
+
+
 class TactcadError(Exception):
     """Base of all errors tactcad reports to a user (CLI exit code 2)."""
 
@@ -66,8 +78,11 @@ class DesignError(TactcadError, ValueError):
 
     def line(self) -> str:
         """``file: field = value: allowed ... (why)``; a field with no value (missing, or
-        an option not given) reads ``field (not given): allowed ...``, never ``= None``."""
-        given = " (not given)" if self.value is None else f" = {short_repr(self.value)}"
+        an option not given) reads ``field (not given): allowed ...``, never ``= None``; a
+        value of a file (or a ``--set``) with its booleans as TOML spells them
+        (:func:`file_value_repr`)."""
+        given = (" (not given)" if self.value is None else
+                 f" = {file_value_repr(self.value) if self.file else short_repr(self.value)}")
         text = f"{self.field}{given}: allowed {self.allowed}"
         if self.why:
             text += f" ({self.why})"

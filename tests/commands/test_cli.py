@@ -660,7 +660,8 @@ def test_an_arrays_stiffness_without_element_pastes_its_first_element(capsys):
 
 
 def test_a_commands_extra_word_points_to_that_commands_help(capsys):
-    assert cli.main(["lumped", "--kr", "5.842", "--km", "0.7303", "--kobj", "0.5", "5"]) == 2
+    # the first word is lumped's DESIGN (its K_m and K_r when not given); the second is extra
+    assert cli.main(["lumped", "--kr", "5.842", "--km", "0.7303", "--kobj", "0.5", "5", "6"]) == 2
     assert "(see tactcad lumped --help)" in capsys.readouterr().err
 
 
@@ -697,3 +698,23 @@ def test_a_set_value_of_no_bare_word_offers_no_quoted_paste():
     with pytest.raises(DesignError) as err:
         parse_override("element.process=wire-edm")
     assert err.value.alternatives[0]["option"] == """--set 'element.process="wire-edm"'"""
+
+
+@pytest.mark.parametrize("text, allowed", [
+    ("element.web_thickness_mm=abc", "a number (mm), 0.05 <= value <= 1 mm"),
+    ("array.columns=abc", "an integer 1 ... 12"),
+    ("die.full_scale_force_N=abc", "a number (N), "),
+])
+def test_a_word_for_a_number_key_offers_no_string_paste(text, allowed):
+    """``--set element.web_thickness_mm=abc`` offered ``--set
+    'element.web_thickness_mm="abc"'``, which the key refuses again as not a number: the
+    refusal says the key takes a number, with its range, and pastes nothing."""
+    with pytest.raises(DesignError) as err:
+        parse_override(text)
+    assert err.value.field == text.partition("=")[0] and err.value.value == "abc"
+    assert err.value.allowed.startswith(allowed)
+    assert err.value.alternatives == []
+    # a key that takes text keeps its paste
+    with pytest.raises(DesignError) as err:
+        parse_override("element.material=abc")
+    assert err.value.alternatives[0]["option"] == """--set 'element.material="abc"'"""

@@ -885,3 +885,27 @@ def test_a_grade_whose_comb_carries_no_force_pastes_another_grade(tmp_path):
     assert r.returncode == 0, r.stdout + r.stderr
     written = tomllib.loads((tmp_path / "pasted.toml").read_text(encoding="utf-8"))
     assert written["material"]["grade"] == offered[0].split()[1]
+
+
+JAW7 = ("[grasper_jaw]\nshaft_diameter_mm = 7.0\nwidth_mm = 5.5\nlength_mm = 16.0\n"
+        "thickness_mm = 2.1\nopposing_jaw_mm = 2.1\npin_diameter_mm = 1.5\n"
+        "pin_inset_mm = 1.1\nopening_angle_deg = 45.0\n")
+
+
+def test_the_shaft_refusal_names_the_combs_need_apart_from_the_jaws_value(tmp_path):
+    """A 7 mm jaw 5.5 mm wide: the comb needs a 5.5 mm thick jaw, once said "the closed jaws
+    (5.5 mm (thickness_mm) + 2.1 mm ...)", read as the jaw's own size (its width is 5.5 mm);
+    each size is now the comb's need or the jaw's value, by name."""
+    jaw = tmp_path / "jaw7.toml"
+    jaw.write_text(JAW7, encoding="utf-8")
+    r = run_cli("design", "--jaw", str(jaw), "--construction", "monolithic-comb",
+                "--kr-over-km", "10", "--kobj-range", "0.5", "5", "--full-scale-force", "0.01",
+                "--columns", "4", "--material", "Ti-6Al-4V-annealed", "--out",
+                str(tmp_path / "comb7"), "--json")
+    assert r.returncode == 2, r.stderr
+    message = json.loads(r.stdout)["error"]["message"]
+    assert "the closed jaws (5.5 mm (thickness_mm)" not in message
+    assert ("no jaw of the 7 mm shaft holds it: it needs closed jaws 5.5 mm thick "
+            "(thickness_mm; this jaw's 2.1 mm) + 2.1 mm (opposing_jaw_mm, this jaw's)") in message
+    assert "wide (width_mm; this jaw's 5.5 mm)" in message
+    assert "(shaft_diameter_mm; this jaw's 7 mm)" in message

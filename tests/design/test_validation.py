@@ -54,7 +54,7 @@ def test_every_error_of_the_three_files_at_once_exit_2_and_nothing_written(tmp_p
     err = proc.stderr
     assert "Traceback" not in err
     for line in ("macro_array.toml: element.web_thickness_mm = 1.55: allowed 0.05 <= value <= 1 mm",
-                 "macro_array.toml: array.pitch_mm = True: allowed a finite number",
+                 "macro_array.toml: array.pitch_mm = true: allowed a finite number",
                  "scenes.toml: scene.array.groups = ['trolley']: allowed groups of rig array"):
         assert line in err, err
     assert not out.exists()
@@ -354,3 +354,17 @@ def test_a_soft_reference_is_refused_by_the_commands_that_read_the_design(tmp_pa
         assert r.returncode == 2, (command, r.stdout[-300:])
         assert "arms.reference_elements[2] = 4" in r.stderr and "K_r > K_m" in r.stderr
         assert "Traceback" not in r.stderr
+
+
+def test_a_boolean_for_an_integer_key_is_echoed_as_the_file_holds_it(tmp_path):
+    """``columns = true`` was echoed in Python's spelling, ``array.columns = True``, which
+    pasted back into the file is no TOML; the file's and a --set's refusal say ``true``."""
+    design = _project_dir(tmp_path, design=lambda t: t.replace("columns = 5", "columns = true"))
+    proc = _cli("scenes", "--design", str(design))
+    assert proc.returncode == 2, proc.stderr[-2000:]
+    assert "array.columns = true: allowed an integer" in proc.stderr, proc.stderr
+    assert "True" not in proc.stderr
+    given = _cli("scenes", "--set", "array.columns=false")
+    assert "array.columns = false: allowed an integer" in given.stderr, given.stderr
+    # a value of the Python API keeps Python's spelling (no file gave it)
+    assert DesignError("number", True, "an integer").line() == "number = True: allowed an integer"

@@ -35,3 +35,13 @@ def test_a_kobj_outside_the_dies_range_is_warned_and_not_read(die_folder, kobj):
     assert record["warnings"] and not any(u["reads"] for u in record["grasp"]["units"])
     inside = json.loads(run_cli("grasp", "--json", cwd=die_folder).stdout)
     assert not inside["warnings"] and all(u["in_kobj_range"] for u in inside["grasp"]["units"])
+
+
+def test_no_line_of_a_passing_grasp_starts_with_error(die_folder):
+    """A grasp that exits 0 wrote its eq. 3 caveat as "error: eq. 3 on the read R: ...", a
+    line a CI log's grep for "error:" took for a failure; it names the K_obj error now."""
+    r = run_cli("grasp", cwd=die_folder)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert not [line for line in r.stdout.splitlines() if line.lstrip().startswith("error:")]
+    assert any(line.startswith("K_obj error of eq. 3 on the read R:")
+               for line in r.stdout.splitlines())

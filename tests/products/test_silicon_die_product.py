@@ -341,7 +341,7 @@ def test_every_die_jaw_paste_loads_through_the_jaws_rules_and_seats_the_die(tmp_
         words = missed[0]["words"]
         assert "no jaw of the 5 mm shaft holds it" in words and "shaft_diameter_mm" in words
         need = float(words.split("a shaft of at least ")[1].split(" mm")[0])
-        thick = float(words.split("closed jaws (")[1].split(" mm")[0])
+        thick = float(words.split("needs closed jaws ")[1].split(" mm")[0])
         assert thick >= 1.18 and need > table["shaft_diameter_mm"]
         # the thinnest jaw the die takes, at the narrowest width that holds its pocket,
         # passes no 5 mm shaft closed: the shaft named is at least their diagonal

@@ -126,11 +126,55 @@ def parse_override(text: str, example: str = SET_EXAMPLE) -> tuple[str, Any]:
     try:
         value = tomllib.loads(f"value = {raw.strip()}")["value"]
     except tomllib.TOMLDecodeError as exc:
+        number = number_key_error(key, raw.strip(), text) if _BARE_WORD.fullmatch(
+            raw.strip()) else None
+        if number is not None:
+            raise number from None
         raise DesignError(key, raw.strip(), "a TOML value: a number, a quoted string, true or "
                                             "false, or a list such as [4, 5, 6]",
                           f"--set {text}: {exc}",
                           alternatives=quoted_word(key, raw.strip())) from None
     return key, value
+
+
+def _file_models() -> tuple:
+    """The design file models a ``--set`` key may name (the array's, the comb's, the
+    die's), imported only when a refusal asks for them."""
+    from tactcad.design.array_plan import DesignFile
+    from tactcad.design.comb_plan import CombFile
+    from tactcad.products.silicon_die.design.die_file import DieFile
+
+    return DesignFile, CombFile, DieFile
+
+
+def number_key_error(key: str, raw: str, text: str):
+    """The refusal of a ``--set`` whose key takes a number (or an integer) in every design
+    file that names it and whose value is no number: the key's kind and allowed range (with
+    its unit, mm, N, Hz...), and no paste (quoting the word as a TOML string would be
+    refused again as not a number).
+
+    Args:
+        key: the dotted key. raw: its value as typed. text: the whole ``--set`` text.
+
+    Returns:
+        The :class:`tactcad.errors.DesignError`; None when no model names the key, or one
+        names it as a text, list or choice (the string paste stands then).
+    """
+    from tactcad.errors import DesignError
+    from tactcad.vocabulary.schema import field_limits
+
+    found = [field_limits(m, key) for m in _file_models()]
+    limits = [f for f in found if f is not None]
+    if not limits or any(f.kind not in ("number", "integer") for f in limits):
+        return None
+    first = limits[0]
+    allowed = (f"an integer {first.lo} ... {first.hi}" if first.kind == "integer" else
+               f"a number ({first.unit}), {first.text()}" if first.unit else
+               f"a number, {first.text()}")
+    why = f"{first.why}; " if first.why else ""
+    kind = "an integer" if first.kind == "integer" else "a number"
+    return DesignError(key, raw, allowed, f"{why}--set {text}: the key takes {kind}, and "
+                                          f"{raw} is none: no paste quotes it as a string")
 
 
 #: A value typed without TOML's quotes (the shell ate them: ``--set design.name="Zélé"``

@@ -4,6 +4,7 @@ Examples::
 
     tactcad lumped --km 15.25 --kr 80.38 --kobj 3.85
     tactcad lumped --km 15.25 --kr 80.38 --r 2.283 --sigma-r 0.05 --json
+    cd my_project && tactcad lumped --kobj 2     # K_m, K_r from the project's design
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import math
 from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError, TactcadError
 
-from tactcad.commands import add_output_args
+from tactcad.commands import add_design_arg, add_output_args
 from tactcad.commands.options import number
 
 
@@ -33,10 +34,13 @@ def register(subparsers) -> None:
                     "K_obj = (K_r - R K_m)/(R - 1). Also prints the sensitivity dK_obj/dR "
                     "and, with --sigma-r, the first-order uncertainty of K_obj. "
                     "Domain: 0 < K_m < K_r, K_obj > 0, 1 < R < K_r/K_m.")
-    p.add_argument("--km", type=float, required=True, metavar="N_PER_MM",
-                   help="measuring-element stiffness K_m (N/mm)")
-    p.add_argument("--kr", type=float, required=True, metavar="N_PER_MM",
-                   help="reference-element stiffness K_r (N/mm), > K_m")
+    p.add_argument("--km", type=float, default=None, metavar="N_PER_MM",
+                   help="measuring-element stiffness K_m (N/mm); default: the design's (a "
+                        "project's, --design's or the DESIGN word's), as tactcad stiffness "
+                        "gives it at closed-form")
+    p.add_argument("--kr", type=float, default=None, metavar="N_PER_MM",
+                   help="reference-element stiffness K_r (N/mm), > K_m; default: the "
+                        "design's, as --km")
     given = p.add_mutually_exclusive_group(required=True)
     given.add_argument("--kobj", type=float, metavar="N_PER_MM",
                        help="object stiffness K_obj (N/mm): print R")
@@ -50,7 +54,8 @@ def register(subparsers) -> None:
                         "unit's elements, the others at the closed form")
     p.add_argument("--unit", type=int, metavar="ELEMENT", default=None,
                    help="with --coupled-design: the measuring element (its row's reference "
-                        "is the unit's other tip)")
+                        "is the unit's other tip); without --km/--kr, the array's unit whose "
+                        "K_m and K_r are taken (needed where its units differ)")
     p.add_argument("--flat", metavar="FILE", default=None,
                    help="with --coupled-design: the tips' heights read on a rigid flat (the "
                         "zeroing run of tactcad calibrate --flat, CSV element,step,"
@@ -65,8 +70,106 @@ def register(subparsers) -> None:
                    help="with --flat: the reference element's force at the reading (N, its "
                         "calibrated K_r times its deflection): a height offset is a length, so "
                         "its effect on R depends on how far the elements deflect")
+    add_design_arg(p, design_help="design file (TOML) or project folder whose K_m and K_r "
+                                  "are taken when --km or --kr is not given; default: the one "
+                                  "design file of the working folder")
     add_output_args(p, "print one JSON object instead of text")
     p.set_defaults(func=run)
+
+
+#: The level a design's K_m and K_r are read at: ``tactcad stiffness``'s default.
+DESIGN_K_LEVEL = "closed-form"
+
+
+def design_stiffness(args: argparse.Namespace) -> dict | None:
+    """K_m and K_r (N/mm) of the design a command line names (the ``DESIGN`` word,
+    ``--design``, else the working folder's one design file), as ``tactcad stiffness`` gives
+    them at :data:`DESIGN_K_LEVEL`, for the ones of ``--km`` and ``--kr`` not given: an
+    array's unit (``--unit``, or any where all its units share both), a silicon die's rows.
+
+    Args:
+        args: the parsed command line (``km``, ``kr``, ``unit``, ``design``,
+            ``design_word``, ``overrides``).
+
+    Returns:
+        ``{"design", "unit", "model", "k_m_N_per_mm", "k_r_N_per_mm"}`` (unit: [measuring,
+        reference] element numbers, None for a die); None when both are given.
+
+    Raises:
+        DesignError: a design (or ``--set``) given beside both --km and --kr (it would go
+            unused), no design to take them from (naming --km and --kr), an array whose
+            units differ without ``--unit``, or ``--unit`` no measuring element of it.
+        TactcadError: ``--unit`` for a die's design.
+    """
+    named = getattr(args, "design_word", None) or args.design
+    if args.km is not None and args.kr is not None:
+        if named is not None or getattr(args, "overrides", None):
+            given = "--design" if named is not None else "--set"
+            raise DesignError(given, named if named is not None else
+                              args.overrides[0], "no design with both --km and --kr given",
+                              "the design's K_m and K_r would go unused: leave out --km and "
+                              "--kr to take them from it")
+        return None
+    from tactcad.commands import parse_overrides, settle_design
+    from tactcad.project_folder import designs_in, other_product_designs_in
+
+    settle_design(args)
+    missing = " and ".join(o for o, v in (("--km", args.km), ("--kr", args.kr)) if v is None)
+    if args.design is None and not (designs_in(".") + other_product_designs_in(".")):
+        raise DesignError(missing, None, "a stiffness in N/mm, or a design to take it from: "
+                                         "run in a project folder, or give --design FILE or "
+                                         "the DESIGN word",
+                          "lumped takes K_m and K_r from the design, as tactcad stiffness "
+                          "gives them, when they are not given")
+    from pathlib import Path
+
+    from tactcad.api import load
+    from tactcad.project_folder import default_design
+
+    design = str(Path(args.design) if args.design is not None else default_design())
+    project = load(design, set=parse_overrides(getattr(args, "overrides", None)))
+    plan = project.plan
+    if hasattr(plan, "k_m_N_per_mm"):  # a silicon die: its rows' beams
+        if args.unit is not None and args.coupled_design is None:
+            raise TactcadError(f"--unit = {args.unit}: allowed with an array's design only "
+                               f"(every unit of die {plan.name} has its rows' K_m and K_r)")
+        pair, k_m, k_r = None, plan.k_m_N_per_mm, plan.k_r_N_per_mm
+    else:
+        pair, k_m, k_r = _array_unit(project, args.unit)
+    return {"design": design, "unit": pair, "model": DESIGN_K_LEVEL,
+            "k_m_N_per_mm": float(k_m), "k_r_N_per_mm": float(k_r)}
+
+
+def _array_unit(project, unit: int | None) -> tuple[list[int], float, float]:
+    """([measuring, reference], K_m, K_r (N/mm)) of an array's unit at
+    :data:`DESIGN_K_LEVEL`: ``unit`` (its measuring element), or the first where every unit
+    has the same two.
+
+    Raises:
+        DesignError: ``unit`` not a measuring element, or none given where units differ.
+    """
+    from tactcad.in_use.tissue_coupling import design_units
+
+    by_part: dict[str, float] = {}
+    k = {}
+    for slot in project.plan.slots:
+        part = slot.geometry.part_name
+        if part not in by_part:
+            by_part[part] = project.element(slot.number).stiffness(
+                DESIGN_K_LEVEL).stiffness_N_per_mm
+        k[slot.number] = by_part[part]
+    pairs = dict(design_units(project.plan, k))
+    if unit is None:
+        if len({(k[m], k[r]) for m, r in pairs.items()}) > 1:
+            raise DesignError("--unit", None, f"a measuring element of {project.plan.name}: "
+                                              f"{sorted(pairs)}",
+                              "its units differ in K_m or K_r: choose the one whose "
+                              "stiffnesses lumped takes (or give --km and --kr)")
+        unit = min(pairs)
+    if unit not in pairs:
+        raise DesignError("--unit", unit, f"a measuring element of {project.plan.name}: "
+                                          f"{sorted(pairs)}")
+    return [unit, pairs[unit]], k[unit], k[pairs[unit]]
 
 
 def coupled_form(design: str, unit: int | None, k_m: float, k_r: float, k_obj: float | None,
@@ -213,6 +316,18 @@ def evaluate(k_m: float, k_r: float, k_obj: float | None = None, r: float | None
     return out
 
 
+def _source_words(source: dict | None, args: argparse.Namespace) -> str:
+    """Where K_m and K_r came from, for the text's first line: "" when both were given."""
+    if source is None:
+        return ""
+    taken = [q for q, v, d in (("K_m", args.km, source["k_m_N_per_mm"]),
+                               ("K_r", args.kr, source["k_r_N_per_mm"])) if v == d]
+    unit = (f" unit {source['unit'][0]}/{source['unit'][1]}"
+            if source["unit"] is not None else "")
+    return (f"; {' and '.join(taken)} from {source['design']}{unit} at {source['model']}, "
+            "as tactcad stiffness gives them")
+
+
 def _inputs(given: dict) -> str:
     return ", ".join(f"{k} = {v:.6g}" for k, v in given.items())
 
@@ -241,7 +356,13 @@ def _results(lumped, k_m, k_r, k_obj, r, sigma_r) -> dict:
 
 def run(args: argparse.Namespace) -> int:
     """Handler of ``tactcad lumped``; returns the exit code (0)."""
+    source = design_stiffness(args)
+    if source is not None:  # the ones not given, from the design
+        args.km = source["k_m_N_per_mm"] if args.km is None else args.km
+        args.kr = source["k_r_N_per_mm"] if args.kr is None else args.kr
     result = evaluate(args.km, args.kr, k_obj=args.kobj, r=args.r, sigma_r=args.sigma_r)
+    if source is not None:
+        result["stiffness_source"] = source
     if (args.flat or args.force_r is not None) and args.coupled_design is None:
         raise TactcadError(f"--{'flat' if args.flat else 'force-r'} = given without "
                            "--coupled-design: allowed only with it (the heights act through "
@@ -262,7 +383,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     given_r = args.r is not None
     print(f"K_m = {result['k_m_N_per_mm']:.6g} N/mm, K_r = {result['k_r_N_per_mm']:.6g} N/mm "
-          f"(K_r/K_m = {result['k_r_over_k_m']:.6g})")
+          f"(K_r/K_m = {result['k_r_over_k_m']:.6g})" + _source_words(result.get(
+              "stiffness_source"), args))
     if given_r:
         print(f"R = {result['r']:.6g} (given)")
         print(f"K_obj = {result['k_obj_N_per_mm']:.6g} N/mm (eq. 3)")

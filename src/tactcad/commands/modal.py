@@ -12,6 +12,7 @@ from tactcad.commands.options import (check_element_option, count, element_numbe
                                       keep_option_defaults, number, output_folder)
 from tactcad.errors import TactcadError
 from tactcad.mechanics.modal_ladder import MODAL_LEVELS, modal_levels_help, modal_models
+from tactcad.mechanics.modal_result import PLUS_MINUS_LIMIT_REL, error_words
 from tactcad.studies.project_reports import MAX_TIP_MASS_MG
 
 
@@ -87,12 +88,18 @@ def run_modal(args: argparse.Namespace) -> int:
     for rec in records:
         els = ", ".join(str(n) for n in rec["elements"])
         freqs = ", ".join(f"{m['frequency_Hz']:.1f} ({m['family']}"
-                          + (f" +/- {100 * m['frequency_Hz_error_rel']:.1f} %"
-                             if "frequency_Hz_error_rel" in m else "") + ")"
+                          + error_words(m.get("frequency_Hz_error_rel"),
+                                        m.get("frequency_Hz_bounds")) + ")"
                           for m in rec["modes"])
+        first = rec["modes"][0]
+        first_error = (f"{100 * rec['first_Hz_error_rel']:.2f} %"
+                       if rec["first_Hz_error_rel"] <= PLUS_MINUS_LIMIT_REL
+                       or "frequency_Hz_bounds" not in first else
+                       error_words(rec["first_Hz_error_rel"],
+                                   first["frequency_Hz_bounds"]).strip())
         bare = (f"; {rec['bare_first_Hz']:.1f} Hz without the {1e3 * rec['added_mass_g']:.3g} mg"
                 if rec["bare_first_Hz"] is not None else "")
         print(f"  {rec['part']} (element {els}): {freqs} Hz{bare}; the first's error estimate "
-              f"{100 * rec['first_Hz_error_rel']:.2f} %, {rec['wall_time_s']:.3g} s")
+              f"{first_error}, {rec['wall_time_s']:.3g} s")
     print(f"lowest first frequency: {lowest['first_Hz']:.1f} Hz ({lowest['part']})")
     return 0

@@ -67,12 +67,44 @@ class Mode:
     #: closed form: its two families are estimated each its own way); None: only the
     #: first's, :attr:`ModalResult.error_estimate_rel`
     error_estimate_rel: float | None = None
+    #: (lower, upper) bounds on this mode's frequency (Hz), where the level estimates it
+    #: between two (the closed form's out-of-plane mode); None: none given
+    bounds_Hz: tuple[float, float] | None = None
 
     def as_json(self) -> dict:
         out = {"mode": self.number, "frequency_Hz": self.frequency_Hz, "family": self.family}
         if self.error_estimate_rel is not None:
             out["frequency_Hz_error_rel"] = self.error_estimate_rel
+        if self.bounds_Hz is not None:
+            out["frequency_Hz_bounds"] = list(self.bounds_Hz)
         return out
+
+
+#: The largest relative error a frequency is said as +/- with (1: the lower end reaches
+#: 0 Hz); above it only the mode's bounds mean anything (:func:`error_words`).
+PLUS_MINUS_LIMIT_REL = 1.0
+
+
+def error_words(error_rel: float | None, bounds_Hz: list[float] | None) -> str:
+    """A mode's error in words, for the modal tables: ``+/- 3.8 %``, or where the error
+    estimate is above :data:`PLUS_MINUS_LIMIT_REL` and the level gives bounds, the bounds
+    (an error of 161 % is their ratio, not a +/-: the frequency cannot be 61 % below 0).
+
+    Args:
+        error_rel: the mode's relative error estimate (None: none given).
+        bounds_Hz: its (lower, upper) bounds (Hz), or None.
+
+    Returns:
+        The words ("" when the mode has no error estimate).
+    """
+    if error_rel is None:
+        return ""
+    if error_rel > PLUS_MINUS_LIMIT_REL and bounds_Hz is not None:
+        lo, hi = bounds_Hz
+        return (f" between {lo:.1f} and {hi:.1f} Hz: the closed form's bounds, a factor "
+                f"{hi / lo:.3g} apart; its {100 * error_rel:.0f} % error estimate, a formula "
+                "made for close bounds, is no +/- here; --model fem3d computes this mode")
+    return f" +/- {100 * error_rel:.1f} %"
 
 
 @dataclass(frozen=True)

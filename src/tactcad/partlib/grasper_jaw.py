@@ -588,11 +588,7 @@ class JawRoom:
             if closed < bore else 0.0
         if widest < least_w - 1e-9:  # no width of this shaft holds the pocket closed
             shaft = math.ceil(round(math.hypot(least_w, closed) * 100, 6)) / 100
-            return [], (f"no jaw of the {bore:g} mm shaft holds it: the closed jaws ({thick:g} "
-                        f"mm (thickness_mm) + {j.opposing_jaw_mm:g} mm (opposing_jaw_mm) thick, "
-                        f"at least {least_w:g} mm wide for the {held:.4g} mm pocket and its "
-                        f"{MIN_WALL_MM:g} mm side walls) need a shaft of at least {shaft:g} mm "
-                        "(shaft_diameter_mm)")
+            return [], no_shaft_words(bore, thick, least_w, held, shaft, j)
         width = jaw_width_mm(j)
         new_w = widest if width > widest + 1e-9 else least_w if width < least_w - 1e-9 else width
         if new_w != width:
@@ -757,6 +753,30 @@ def _stated_pocket(p: Problems, field: str, stated: float | None, most: float, w
         p.add(field, stated, "a jaw with room for a pocket", f"{why} leaves {fmt(most)} mm")
         return 0.0
     return most if stated is None else p.within(field, stated, hi=most, why=why)
+
+
+def no_shaft_words(bore_mm: float, thick_mm: float, least_width_mm: float, held_mm: float,
+                   shaft_mm: float, jaw) -> str:
+    """Why no jaw of the shaft holds the insert, each size named as the insert's need or
+    as the jaw file's value (a need that equals another key's value read as that value).
+
+    Args:
+        bore_mm: the jaw file's shaft (mm). thick_mm: the jaw thickness the insert needs
+            (mm). least_width_mm: the jaw width it needs (mm). held_mm: its pocket's width
+            (mm). shaft_mm: the least shaft such closed jaws pass (mm). jaw: the jaw file's
+            :class:`GrasperJawSection` (its thickness, opposing jaw and width).
+
+    Returns:
+        The words, e.g. ``no jaw of the 7 mm shaft holds it: it needs closed jaws 5.5 mm
+        thick (thickness_mm; this jaw's 2.1 mm) + 2.1 mm (opposing_jaw_mm) ...``.
+    """
+    return (f"no jaw of the {bore_mm:g} mm shaft holds it: it needs closed jaws {thick_mm:g} mm "
+            f"thick (thickness_mm; this jaw's {jaw.thickness_mm:g} mm) + "
+            f"{jaw.opposing_jaw_mm:g} mm (opposing_jaw_mm, this jaw's) and at least "
+            f"{least_width_mm:g} mm wide (width_mm; this jaw's {jaw_width_mm(jaw):g} mm) for "
+            f"the {held_mm:.4g} mm pocket and its {MIN_WALL_MM:g} mm side walls; such jaws need "
+            f"a shaft of at least {shaft_mm:g} mm (shaft_diameter_mm; this jaw's {bore_mm:g} "
+            "mm)")
 
 
 def closed_thickness_limit_mm(trocar_mm: float, width_mm: float) -> float:

@@ -301,6 +301,24 @@ def _field_at(model: type[BaseModel], loc: tuple) -> tuple[str, Limits | None, t
     return name, limits, cls
 
 
+def field_limits(model: type[BaseModel], key: str) -> Limits | None:
+    """The declared :class:`Limits` of a dotted key (``element.web_thickness_mm``) of
+    ``model``.
+
+    Args:
+        model: the file's model. key: the dotted key, as ``--set`` names it.
+
+    Returns:
+        The key's limits; None when ``model`` has no such key or it declares none.
+    """
+    parts = tuple(key.split("."))
+    fields = model.model_fields.get(parts[0]) if parts else None
+    if fields is None:
+        return None
+    _, limits, _ = _field_at(model, parts)
+    return limits
+
+
 def _list_item(ann: Any) -> Any:
     """The item type of a list field's annotation, through ``Optional`` and ``Annotated``
     (``list[float]`` -> ``float``); None when ``ann`` is no list."""

@@ -382,7 +382,7 @@ def grasp_lines(plan, record: dict, result) -> list[str]:
               f"force: {', '.join(str(t['site']) for t in broken) or 'none'}; the face in "
               f"the tissue beside posts: {', '.join(str(t['site']) for t in face) or 'none'} "
               f"(posts {1e3 * record['post_proud_mm']:.3g} um proud)",
-              f"error: {record['reasons']['error']}"]
+              f"K_obj error of {record['reasons']['error']}"]
     left = result.correction_residual
     if left:  # what the correction leaves, with its size (never a bare corrected column)
         lo, hi = left["range_rel"]
