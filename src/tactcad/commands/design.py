@@ -1970,7 +1970,9 @@ def print_report(r: dict) -> None:
               f"   {u['stiffness_from']}")
     c = r.get("tissue_coupling")
     if c:
-        worst = max((u for u in c["units"]), key=lambda u: abs(u["worst_eq3_rel"] or float("inf")))
+        # mirrored units tie to round-off: the first in the array's order is named
+        worst = max((u for u in c["units"]),
+                    key=lambda u: round(abs(u["worst_eq3_rel"] or float("inf")), 9))
         if c["mode"] == "off":
             head = "eq. 2 alone (--tissue-coupling off)"
         elif "eq. 2's centring" not in (c["assumption"] or ""):
