@@ -43,8 +43,9 @@ def test_loading_a_design_beyond_a_fit_lets_no_warning_through():
 def test_a_records_warnings_hold_what_its_work_warned_and_nothing_reaches_the_console(thin_web):
     record, said = caught(thin_web.readout)
     assert [str(w.message) for w in said] == []
-    gauge = [w for w in record["warnings"] if w.startswith("gauge strain")]
-    assert len(gauge) == 1 and "sheet_over_web" in gauge[0], record["warnings"]
+    gauge = [w for w in record["warnings"] if w.startswith("gauge strain of")]
+    assert len(gauge) == 1 and "the sheet over the web thickness, b/t" in gauge[0], \
+        record["warnings"]
     assert "estimated error" in gauge[0]
 
 
@@ -53,7 +54,7 @@ def test_alike_warnings_of_one_call_fold_into_one_line_with_their_largest_error(
     assert [str(w.message) for w in said] == []
     lines = record["warnings"]
     assert len(lines) == len(set(lines))
-    firsts = [w for w in lines if w.startswith("gauge strain:")]
+    firsts = [w for w in lines if w.startswith("gauge strain of")]
     folds = [w for w in lines if w.startswith(GaugeStrainRangeWarning.fold_as)]
     assert len(firsts) == 1 and len(folds) <= 1, lines
     if folds:

@@ -217,3 +217,27 @@ def test_model_coordinates_examples_inside_the_fit():
             assert f.outside == (), (design, g.part_name, f.coordinates)
             assert math.isfinite(f.factor) and 0.8 < f.factor < 1.2
     assert isinstance(load_strain_correction(), StrainCorrection)
+
+
+def test_a_web_tolerance_end_outside_the_strain_fit_is_named_in_words_with_its_element(plan):
+    """The warning of a web at its lower tolerance limit names the element, that limit and
+    its web (not the drawn web's figures as if they were its own), and its coordinate in
+    words, not by the model's variable name."""
+    import warnings
+
+    from tactcad.in_use.kobj_budget import web_tolerance_k_change
+    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
+
+    g = plan.element(1).geometry
+    # b/t 47.6 at the drawn web (fitted <= 49.95), 58.8 at its lower limit 0.085 mm
+    g = replace(g, web_thickness_mm=0.105, web_tolerance_mm=0.02, sheet_thickness_mm=5.0,
+                notch_radius_mm=0.5)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        web_tolerance_k_change(g, plan.material)
+    texts = [str(w.message) for w in said if issubclass(w.category, GaugeStrainRangeWarning)]
+    assert texts, [str(w.message) for w in said]
+    assert all("sheet_over_web" not in t for t in texts), texts
+    low = [t for t in texts if "lower tolerance limit, 0.085 mm" in t]
+    assert low and g.part_name in low[0] and "drawn 0.105 +/-0.02 mm" in low[0], texts
+    assert "the sheet over the web thickness, b/t" in low[0] and "b/t 58.8" in low[0]

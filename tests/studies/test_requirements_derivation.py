@@ -238,3 +238,13 @@ def test_a_force_too_small_for_the_read_out_fails_the_derived_resolution():
     assert "too small for the read-out chain" in req.reasons["kobj_resolution_rel"]
     res = record(verification_matrix(plan, requirements=req), "kobj_resolution_rel")
     assert res["predicted"] > UNREADABLE_RESOLUTION_REL and res["verdict"] == "fail"
+
+
+def test_the_web_tolerance_a_k_spread_note_suggests_is_proportional_rounded_down_and_floored():
+    """+/-0.02 mm giving +/-19.1 % K: +/-0.01 mm brings it within 10 %; a spread far past it
+    stops at the process floor; a spread already within it keeps the tolerance."""
+    from tactcad.studies.verification import tighter_web_tolerance
+
+    assert tighter_web_tolerance(0.02, 0.191) == pytest.approx(0.01)
+    assert tighter_web_tolerance(0.02, 0.508, floor_mm=0.005) == pytest.approx(0.005)
+    assert tighter_web_tolerance(0.02, 0.05) == pytest.approx(0.02)

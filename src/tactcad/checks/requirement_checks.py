@@ -71,6 +71,12 @@ def requirement_checks(plan, model: str = AUTO) -> list[CheckResult]:
 
     out = []
     for r in requirement_records(plan, model):
+        if r.get("informational"):  # the design's own figure (k_tolerance_rel not stated)
+            detail = (f"info: not stated, not judged: predicted {value_text(r['predicted'])} "
+                      f"(error {percent_text(r['error_estimate_rel'], sign=False)}, "
+                      f"{r['model']})" + (f"; {r['note']}" if r.get("note") else ""))
+            out.append(CheckResult("requirement", r["requirement"], True, detail))
+            continue
         detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
                   f"{value_text(r['predicted'])}, margin {margin_text(r)} "
                   f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")

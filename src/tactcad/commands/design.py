@@ -1769,8 +1769,10 @@ def verification_summary(asked: str, level: str | None, records: list[dict]) -> 
                               "margin_rel": r.get("margin_rel"),
                               "decided_by": r.get("decided_by", r.get("model", level)),
                               "target": r.get("target"), "predicted": r.get("predicted"),
-                              "error_estimate_rel": r.get("error_estimate_rel")}
-                             for r in records]}
+                              "error_estimate_rel": r.get("error_estimate_rel"),
+                              **({"informational": True} if r.get("informational") else {})}
+                             for r in records],
+            "notes": list(dict.fromkeys(r["note"] for r in records if r.get("note")))}
 
 
 def design_report(result, verify: str, progress=None, margins: list[dict] | None = None) -> dict:
@@ -1873,8 +1875,9 @@ def design_margins(plan, keys: tuple[str, ...] = ()) -> list[dict]:
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.studies.verification import verification_matrix
 
-    return [{k: r[k] for k in ("requirement", "target", "predicted", "margin_rel",
-                               "error_estimate_rel", "verdict", "level_fixed", *keys)}
+    return [{**{k: r[k] for k in ("requirement", "target", "predicted", "margin_rel",
+                                  "error_estimate_rel", "verdict", "level_fixed", *keys)},
+             **{k: r[k] for k in ("informational", "note") if k in r}}
             for r in verification_matrix(plan, "closed-form",
                                          envelope_mm=array_envelope_mm(plan))]
 
@@ -1887,11 +1890,14 @@ MAX_FORCE_BASIS = ("each gauge limit less the closed form's error on the grid's 
 
 def margin_lines(margins: list[dict]) -> list[str]:
     """The report's words on :func:`design_margins`: one line when every margin
-    clears its error, else a line per requirement that does not, saying what decides it."""
+    clears its error, else a line per requirement that does not, saying what decides it;
+    then each record's note (the K spread over the web tolerance, not judged)."""
+    notes = [f"note: {note}" for note in dict.fromkeys(m["note"] for m in margins
+                                                        if m.get("note"))]
     open_ = [m for m in margins if m["verdict"] != "pass"]
     if not open_:
         return ["margins: every requirement passes at the closed form by more than its error "
-                "estimate, so `verify --model auto` decides it there"]
+                "estimate, so `verify --model auto` decides it there", *notes]
     out = []
     for m in open_:
         margin = "n/a" if m["margin_rel"] is None else f"{100 * m['margin_rel']:+.1f} %"
@@ -1901,7 +1907,7 @@ def margin_lines(margins: list[dict]) -> list[str]:
                 "`verify --model auto` climbs the ladder to decide it")
         out.append(f"margin: {m['requirement']} {m['verdict']} at the closed form (margin "
                    f"{margin}, error {err}); {then}")
-    return out
+    return out + notes
 
 
 def verification_lines(v: dict | None) -> list[str]:

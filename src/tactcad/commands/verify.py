@@ -74,6 +74,8 @@ def run(args: argparse.Namespace) -> int:
         print(matrix_table(records))
         for key, why in req.reasons.items():
             print(f"  {key}: {why}")
+        for note in dict.fromkeys(r["note"] for r in records if r.get("note")):
+            print(f"note: {note}")
         for level in levels:
             print(f"  {level['model']}: {level['seconds']:.2f} s")
         print(tissue_text(tissue))

@@ -12,7 +12,8 @@ Keys (units in the names):
 * ``kobj_range_N_per_mm = [LO, HI]``: object stiffnesses the array must read.
 * ``kr_over_km``: stiffness ratio K_r / K_m of the sensing units (eq. 2).
 * ``k_tolerance_rel``: the band each element's K must hold over the web's
-  fabrication tolerance (relative, e.g. 0.1 for +/-10 %).
+  fabrication tolerance (relative, e.g. 0.1 for +/-10 %); judged only when the lab
+  states it (left out, ``verify`` reports the K spread, not judged, and notes a large one).
 * ``kobj_resolution_rel``: the relative K_obj resolution the array must reach
   over the whole range at the full-scale force.
 * ``footprint_mm = [X, Y]`` or ``[X, Y, Z]``: the envelope the clamped array
@@ -155,7 +156,8 @@ def stated_requirements(raw: Mapping[str, Any]) -> dict[str, Any]:
 
 #: How a design file says a requirement was derived by ``tactcad design`` from the design's
 #: own prediction, not stated by the lab: the start of its reason under ``[assumptions]``
-#: (``"requirements.k_tolerance_rel" = "Derived by tactcad design ..."``).
+#: (``"requirements.kobj_resolution_rel" = "Derived by tactcad design ..."``; an earlier
+#: ``design`` also wrote ``k_tolerance_rel`` so, which ``verify`` now reads as not stated).
 DERIVED_BY_DESIGN = "Derived by tactcad design from the design's own prediction"
 
 

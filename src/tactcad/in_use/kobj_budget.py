@@ -487,11 +487,13 @@ def web_tolerance_k_change(geometry, material) -> tuple[float, float]:
 
 def _tolerance_end_k(geometry, material, web_mm: float) -> float:
     """Closed-form K (N/mm) of ``geometry`` cut at ``web_mm`` (an end of its web tolerance).
-    A correction range warning it gives names that web: the element as drawn may sit at
-    the range's end (t/R = 1) while its tolerance end lies past it."""
+    A correction range warning or a gauge-strain range warning it gives names that web
+    (:func:`tolerance_end_words`): the element as drawn may sit inside a fitted range while
+    its tolerance end lies past it."""
     import warnings
 
     from tactcad.mechanics.correction import CorrectionRangeWarning
+    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning
     from tactcad.mechanics.ladder import estimate
 
     with warnings.catch_warnings(record=True) as said:
@@ -507,9 +509,31 @@ def _tolerance_end_k(geometry, material, web_mm: float) -> float:
                 f"reads): {w.message}", getattr(w.message, "error_rel", 0.0),
                 getattr(w.message, "left", None), f"at a web tolerance's end, {where}"),
                 stacklevel=2)
+        elif issubclass(w.category, GaugeStrainRangeWarning):
+            detail = getattr(w.message, "detail", "") or str(w.message)
+            warnings.warn(GaugeStrainRangeWarning(
+                f"gauge strain of {tolerance_end_words(geometry, web_mm)}: {detail}",
+                getattr(w.message, "error_rel", 0.0), detail), stacklevel=2)
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return k
+
+
+def tolerance_end_words(geometry, web_mm: float) -> str:
+    """Which element and which end of its web tolerance ``web_mm`` is, in words.
+
+    Args:
+        geometry: the element as drawn (mm). web_mm: the web at one end of its tolerance
+            (mm).
+
+    Returns:
+        e.g. ``"element_a19p541mm at its web's lower tolerance limit, 0.085 mm (drawn
+        0.105 +/-0.02 mm; the K band `verify` reads)"``.
+    """
+    end = "lower" if web_mm < geometry.web_thickness_mm else "upper"
+    return (f"{geometry.part_name} at its web's {end} tolerance limit, {web_mm:g} mm (drawn "
+            f"{geometry.web_thickness_mm:g} +/-{geometry.web_tolerance_mm:g} mm; the K band "
+            f"`verify` reads)")
 
 
 def manufacturing_tolerance(ctx: Context, unit: Unit, op: Operating) -> Contribution:

@@ -496,15 +496,19 @@ def corrected_point_strain(g: ElementGeometry, material: Material, *,
     """
     import warnings
 
-    from tactcad.mechanics.gauge_strain import GaugeStrainRangeWarning, point_strain_factor
+    from tactcad.mechanics.gauge_strain import (GaugeStrainRangeWarning, coordinate_words,
+                                                point_strain_factor)
 
     f = point_strain_factor(g, material)
     if f.outside:
+        detail = (f"{coordinate_words(f.outside)} outside the fem3d fit of the plane-strain "
+                  f"factor (t/R {f.coordinates['t_over_R']:.3g}, b/t "
+                  f"{f.coordinates['sheet_over_web']:.3g}, nu "
+                  f"{f.coordinates['poisson_ratio']:.3g}); estimated error "
+                  f"{100 * f.error_rel:.1f} %")
         warnings.warn(GaugeStrainRangeWarning(
-            f"gauge strain: {', '.join(f.outside)} outside the fem3d fit of the plane-strain "
-            f"factor (t/R {f.coordinates['t_over_R']:.3g}, b/t "
-            f"{f.coordinates['sheet_over_web']:.3g}, nu {f.coordinates['poisson_ratio']:.3g}); "
-            f"estimated error {100 * f.error_rel:.1f} %", f.error_rel), stacklevel=stacklevel)
+            f"gauge strain of {g.part_name} (web {g.web_thickness_mm:g} mm): {detail}",
+            f.error_rel, detail), stacklevel=stacklevel)
     return f.factor
 
 

@@ -76,6 +76,26 @@ COEFFICIENT_NAMES = ("c1", "c2", "c3", "c4", "c5", "c6")
 #: The coordinates of the model and their fitted range (JSON ``fit_range``).
 RANGE_KEYS = ("t_over_R", "width_ratio", "poisson_ratio", "grid_over_notch",
               "grid_width_over_sheet", "sheet_over_web")
+#: Each coordinate of :data:`RANGE_KEYS` in words, with its symbol (for the user's eyes).
+COORDINATE_WORDS = {
+    "t_over_R": "the web thickness over the notch radius, t/R",
+    "width_ratio": "sqrt(web x notch radius) over the sheet thickness, sqrt(t R)/b",
+    "poisson_ratio": "the material's Poisson ratio, nu",
+    "grid_over_notch": "the gauge grid's length over the notch diameter, L_g/(2R)",
+    "grid_width_over_sheet": "the gauge grid's width over the sheet thickness, W/b",
+    "sheet_over_web": "the sheet over the web thickness, b/t"}
+
+
+def coordinate_words(names) -> str:
+    """The coordinates ``names`` (keys of :data:`RANGE_KEYS`) in words, joined with "and".
+
+    Args:
+        names: coordinate keys, e.g. ``("sheet_over_web",)``.
+
+    Returns:
+        e.g. ``"the sheet over the web thickness, b/t"``; an unknown key as itself.
+    """
+    return " and ".join(COORDINATE_WORDS.get(n, n) for n in names)
 
 
 class GaugeStrainRangeWarning(UserWarning):
@@ -83,14 +103,21 @@ class GaugeStrainRangeWarning(UserWarning):
 
     Attributes:
         error_rel: the estimated relative error of the factor there.
+        detail: the message without the element's name ("" when not given).
         fold_as: what a run's output folds such warnings into (one per element geometry).
     """
 
     fold_as = "gauge strain outside the fem3d fit of the plane-strain factor"
 
-    def __init__(self, message: str, error_rel: float = 0.0):
+    def __init__(self, message: str, error_rel: float = 0.0, detail: str = ""):
+        """Args:
+            message: the whole text. error_rel: as the attribute (dimensionless).
+            detail: the text after the element's name (what is outside which fit), for a
+                caller that names the element its own way; "" when none.
+        """
         super().__init__(message)
         self.error_rel = error_rel
+        self.detail = detail
 
 
 @dataclass(frozen=True)

@@ -228,6 +228,93 @@ def closed_form_k_error(plan: Plan) -> float:
                for g in plan.distinct_elements.values())
 
 
+#: The K spread over the web tolerance (relative, +/-) beyond which ``verify`` and ``design``
+#: note it when the design file states no ``k_tolerance_rel``: the K_r/K_m band a sensing
+#: unit's ratio is allowed by default (:data:`KR_OVER_KM_BAND_REL`, the paper's "about 10"):
+#: a K moving further moves a unit's ratio off its target by more than that band, so one
+#: nominal K per element no longer serves the array.
+K_SPREAD_NOTE_REL = KR_OVER_KM_BAND_REL
+
+#: The step a suggested web tolerance is rounded down to (mm).
+WEB_TOLERANCE_STEP_MM = 0.005
+
+
+def web_spread(plan: Plan, web_tolerance_mm: float | None = None) -> tuple[float, str]:
+    """The largest relative K change of any element over its web +/- the web tolerance
+    (corrected closed form, as :func:`web_band_rel`) and the element that has it.
+
+    Args:
+        plan: the design.
+        web_tolerance_mm: the web tolerance to evaluate (mm, > 0); None: each element's own.
+
+    Returns:
+        (spread, part name): spread dimensionless (0.5 for +/-50 %).
+    """
+    import warnings
+
+    from tactcad.in_use.kobj_budget import web_tolerance_k_rel
+
+    with warnings.catch_warnings():
+        if web_tolerance_mm is not None:  # a what-if's range warnings are not the design's
+            warnings.simplefilter("ignore")
+        spreads = [(web_tolerance_k_rel(g if web_tolerance_mm is None else
+                                        _replaced(g, web_tolerance_mm=web_tolerance_mm),
+                                        plan.material), name)
+                   for name, g in plan.distinct_elements.items()]
+    return max(spreads, default=(0.0, ""))
+
+
+def tighter_web_tolerance(tolerance_mm: float, spread_rel: float,
+                          limit_rel: float = K_SPREAD_NOTE_REL,
+                          floor_mm: float = WEB_TOLERANCE_STEP_MM) -> float:
+    """The web tolerance that brings a K spread to ``limit_rel``, K's change taken as
+    proportional to the tolerance, rounded down to :data:`WEB_TOLERANCE_STEP_MM` and no
+    tighter than ``floor_mm`` (wire EDM's process limit on the web).
+
+    Args:
+        tolerance_mm: the web tolerance now (mm, > 0). spread_rel: the K spread it gives
+            (> 0). limit_rel: the spread to reach (> 0). floor_mm: the tightest (mm).
+
+    Returns:
+        The tolerance (mm), at most ``tolerance_mm``.
+    """
+    step = WEB_TOLERANCE_STEP_MM
+    need = tolerance_mm * limit_rel / spread_rel
+    return min(tolerance_mm, max(floor_mm, math.floor(need / step + 1e-9) * step))
+
+
+def k_spread_note(plan: Plan, requirements: "Requirements") -> str | None:
+    """What ``verify`` and ``design`` say of the K spread over the web tolerance when the
+    design file states no ``k_tolerance_rel`` and the spread exceeds
+    :data:`K_SPREAD_NOTE_REL`: how far K moves, and the two ways out (calibrate every
+    element, or a tighter web tolerance with the figure it gives and the line to paste).
+
+    Args:
+        plan: the design. requirements: its :func:`requirements_of`.
+
+    Returns:
+        One line, or None (a stated band, judged by its row, or a spread within the limit).
+    """
+    if "k_tolerance_rel" in requirements.stated:
+        return None
+    spread, part = web_spread(plan)
+    if spread <= K_SPREAD_NOTE_REL:
+        return None
+    from tactcad.studies.tolerance_budget import PROCESS_LIMITS
+
+    tol = max(g.web_tolerance_mm for g in plan.distinct_elements.values())
+    text = (f"K moves up to +/-{100 * spread:.3g} % ({part}, closed form) with the "
+            f"+/-{tol:g} mm web tolerance, more than +/-{100 * K_SPREAD_NOTE_REL:g} % (a "
+            f"unit's K_r/K_m band), and the design states no requirements.k_tolerance_rel: "
+            f"calibrate every element (eq. 4-6)")
+    tighter = tighter_web_tolerance(tol, spread, floor_mm=PROCESS_LIMITS["web_thickness_mm"])
+    if tighter < tol:
+        at, _ = web_spread(plan, tighter)
+        text += (f", or tighten the web tolerance to +/-{tighter:g} mm (K +/-{100 * at:.3g} %"
+                 f"; --set element.web_tolerance_mm={tighter:g})")
+    return text + "; state the band your use needs as requirements.k_tolerance_rel to judge it"
+
+
 @dataclass(frozen=True)
 class RowPair:
     """A row's reference and the softest measuring element of that row at one level.
@@ -511,6 +598,9 @@ def _requirements_from(plan: Plan, figures: Figures | None,
 
     stated = stated_requirements(plan.raw)
     derived = derived_requirements(plan.raw)  # written by tactcad design, not the lab's
+    if "k_tolerance_rel" in derived:
+        # an earlier tactcad design wrote its own K band: not a requirement, read as unstated
+        del stated["k_tolerance_rel"], derived["k_tolerance_rel"]
     fig = figures if figures is not None and figures.model == "closed-form" \
         else element_figures(plan, "closed-form")
     if fig is not figures:  # units read at another level are not the closed form's
@@ -537,9 +627,11 @@ def _requirements_from(plan: Plan, figures: Figures | None,
     if "k_tolerance_rel" not in values:
         values["k_tolerance_rel"], band = k_band_requirement(plan) if k_band is None else \
             (padded_band_requirement(*k_band), k_band[0])
-        reasons["k_tolerance_rel"] = (f"not stated: the largest K change over the web "
-                                      f"tolerance, {100 * band:.3g} % (closed form), padded by "
-                                      f"its error and rounded up")
+        reasons["k_tolerance_rel"] = (f"not stated: reported, not judged: the largest K "
+                                      f"change over the web tolerance is {100 * band:.3g} % "
+                                      f"(closed form); the row's reference is that band "
+                                      f"padded by its error and rounded up, so it cannot fail: "
+                                      f"state the band your use needs to judge it")
     if "kobj_resolution_rel" not in values:
         values["kobj_resolution_rel"], reasons["kobj_resolution_rel"] = \
             derived_kobj_resolution(plan, fig, values["kobj_range_N_per_mm"],
@@ -800,7 +892,11 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     positive means met. K_r / K_m passes within the K band the requirements
     allow (margin >= -k_tolerance_rel); the others pass with margin >= 0.
     The full-scale-force record lists every limit (``limits``) and the one
-    that binds (``binding_limit``). ``stress``: as :func:`element_figures`
+    that binds (``binding_limit``). Where the design states no ``k_tolerance_rel`` (or an
+    earlier ``tactcad design`` wrote its own prediction's), its two K band records are the
+    design's own figures, not requirements: ``informational`` (verdict ``pass``, shown as
+    INFO), the web band's with a ``note`` (:func:`k_spread_note`) when K spreads beyond
+    :data:`K_SPREAD_NOTE_REL`. ``stress``: as :func:`element_figures`
     (an FEM level needs :func:`tactcad.studies.strength_studies.element_stress`).
     ``below``, ``keep``: as :func:`element_figures`: the parts named in ``keep`` keep a lower
     level's figures and limits (with its errors); each listed limit then says its ``level``
@@ -851,6 +947,13 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     derive = None if "k_tolerance_rel" in req.written else \
         (lambda band: padded_band_requirement(band, error))
     out.append(toleranced_band_record(plan, req.k_tolerance_rel, error, derive))
+    if derive is not None:  # not stated: the design's own band, reported, never judged
+        note = k_spread_note(plan, req)
+        for r in out:
+            if r["requirement"] in ("k_tolerance_rel", "k_tolerance_rel_toleranced"):
+                r.update(informational=True, verdict="pass")
+        if note:  # once, on the web band's row
+            next(r for r in out if r["requirement"] == "k_tolerance_rel")["note"] = note
     if req.footprint_mm is not None:
         if envelope_mm is None:
             raise ValueError("the design states requirements.footprint_mm: pass the array's "
@@ -1630,10 +1733,13 @@ def matrix_table(records: list[dict]) -> str:
             "binds |",
             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
-        rows.append(f"| {r['requirement']} | {value_text(r['target'])} | "
+        info = r.get("informational")  # a design's own figure, not a requirement: no verdict
+        rows.append(f"| {r['requirement']} | "
+                    f"{'not stated' if info else value_text(r['target'])} | "
                     f"{value_text(r['predicted'])} | "
                     f"{percent_text(r['error_estimate_rel'], sign=False)} | "
-                    f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
+                    f"{'n/a' if info else margin_text(r)} | {r['model']} | "
+                    f"{'INFO' if info else r['verdict'].upper()} | "
                     f"{binding_text(r)} |")
     for r in records:
         for lim in r.get("limits", ()):
