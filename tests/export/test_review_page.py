@@ -336,3 +336,14 @@ def test_requirements_of_the_manifest_show_as_the_verification_matrix():
     assert rows[0]["verdict"] == "FAIL" and rows[1]["binds"] == "w"
     assert limits == [{"limit": "yield", "force_N": 0.3}] and values == {"full_scale_force_N": 0.1}
     assert unmet == ["kr_over_km"]  # the page's red banner
+
+
+def test_a_requirement_reported_not_judged_shows_as_info_not_pass():
+    # a K band the lab did not state is the design's own figure: verify prints INFO
+    record = {"values": {}, "closed_form_matrix": [
+        {"requirement": "k_tolerance_rel", "target": None, "predicted": 0.5, "pass": True,
+         "verdict": "pass", "informational": True},
+        {"requirement": "kr_over_km", "target": 10, "predicted": 10.1, "pass": True}]}
+    rows = next(iter(_data(requirements=record)["manifest"]["verification"].values()))
+    assert {r["requirement"]: r["verdict"] for r in rows} == {"k_tolerance_rel": "INFO",
+                                                              "kr_over_km": "PASS"}

@@ -350,6 +350,8 @@ def unmet_requirements(requirements: dict) -> list[str]:
 
 
 def _verdict(record: dict) -> str:
+    if record.get("informational"):  # the design's own figure, reported, not judged
+        return "info"
     return record.get("verdict", "pass" if record.get("pass") else "fail")
 
 
