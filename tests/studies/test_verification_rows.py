@@ -382,3 +382,20 @@ def test_a_column_paired_units_pair_is_named_by_its_column_not_its_references_ro
     row_paired = next(r for r in verification_matrix(tactcad.load(EXAMPLE).plan, "closed-form")
                       if r["requirement"] == "kr_over_km")
     assert "column" not in row_paired and binding_text(row_paired).startswith("row ")
+
+
+def test_a_verdicts_only_matrix_leaves_out_what_is_reported_and_judges_alike():
+    # a search reads verdicts alone: the K band a design states none of (the Monte Carlo
+    # row, the spread note) is left out; every judged row is the full matrix's
+    macro = EXAMPLE.parents[1] / "macro_array" / "macro_array.toml"
+    for source, stated in ((macro, False), (EXAMPLE, True)):
+        plan = plan_from_dict(read_toml(source, "design"), str(source))
+        full = verification_matrix(plan)
+        judged = verification_matrix(plan, reported=False)
+        left_out = [r["requirement"] for r in full if r["requirement"] not in
+                    {j["requirement"] for j in judged}]
+        assert left_out == ([] if stated else ["k_tolerance_rel_toleranced"])
+        kept = [{k: v for k, v in r.items() if k != "note"} for r in full
+                if r["requirement"] not in left_out]
+        assert judged == kept
+        assert not any("note" in r for r in judged) or stated

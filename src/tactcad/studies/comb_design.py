@@ -869,7 +869,8 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
         return (None, *refused_fields(exc), -math.inf, None, None)
     env = envelope_of(plan) if envelope_of is not None else None
     try:
-        records = verification_matrix(plan, "closed-form", envelope_mm=env)
+        # the verdicts alone: the K band a candidate states none of is reported, not judged
+        records = verification_matrix(plan, "closed-form", envelope_mm=env, reported=False)
     except DesignErrors as exc:  # a table the plan holds refuses it (the jaw's, say)
         return (None, *refused_fields(exc), -math.inf, None, None)
     failed = [r for r in records if r["verdict"] == "fail" or nominally_short(r)]

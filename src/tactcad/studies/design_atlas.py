@@ -423,7 +423,8 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
 
     env = envelope_of(plan) if envelope_of is not None else None
     predicted = {r["requirement"]: r["predicted"]
-                 for r in verification_matrix(plan, "closed-form", envelope_mm=env)}
+                 for r in verification_matrix(plan, "closed-form", envelope_mm=env,
+                                              reported=False)}
     lowest = modes_record(plan, "closed-form", modes=1)[0]["lowest_first_Hz"]
     return {"kobj_resolution_rel": float(predicted.get("kobj_resolution_rel", math.nan)),
             "max_force_N": float(predicted.get("full_scale_force_N", math.nan)),
