@@ -99,6 +99,14 @@ def test_a_dies_export_has_its_review_page_and_manifest_and_checks(die_folder):
                                                                  (2, "measuring")]
     assert "elements" not in manifest
     assert manifest["rows"][1]["rated_force_N"] < manifest["die"]["full_scale_force_N"]
+    # the arrays' sections, in their layout: one script reads every product's manifest
+    requirements = manifest["requirements"]
+    assert {r["requirement"] for r in requirements["closed_form_matrix"]} >= {
+        "full_scale_force_N", "kr_over_km"}
+    assert {r["model"] for r in requirements["closed_form_matrix"]} <= {"closed-form", "drawn"}
+    first = requirements["first_resonance"]
+    assert first["lowest_first_Hz"] == min(e["first_Hz"] for e in first["elements"]) > 1e3
+    assert manifest["kobj_budget"]
     listed = {f["path"] for f in manifest["files"]}
     assert {"review/index.html", "grasper_jaw_5mm_mems.gds", "scenes/"
             "grasper_jaw_5mm_mems_in_jaw.glb"} <= listed

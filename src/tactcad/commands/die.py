@@ -545,13 +545,15 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`),
     and, as an array's, the grasp (``tactcad grasp``'s record at its defaults), the tissue
     coupling and the build book (the die's traveller, ``readout``'s sheet resistance)."""
+    from tactcad.commands.finite_json import finite
     from tactcad.export.atlas_view import atlas_view
     from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
                                                                   strength_report)
     from tactcad.export.review_assets import import_map
     from tactcad.export.review_page import write_review_page
     from tactcad.products.silicon_die.export.die_review import (
-        beam_elements, design_head, die_manifest, manifest_text, review_contents_of_die)
+        beam_elements, design_head, die_manifest, die_manifest_sections, manifest_text,
+        review_contents_of_die)
     from tactcad.products.silicon_die.studies.die_verification import die_verification
     from tactcad.products.silicon_die.export.die_review import traveller_book
     from tactcad.products.silicon_die.export.traveller import traveller_steps
@@ -570,8 +572,9 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
         grasp = {"not_applicable": f"the grasp at tactcad grasp's defaults has no answer: {exc}"}
     book = traveller_book(traveller_steps(plan, readout["sheet_resistance_ohm_per_sq"]))
     elements = beam_elements(strength_report(plan)[0], stiffness_report(plan)[0])
+    verification = die_verification(plan, mount)
     contents = review_contents_of_die(
-        head, die_verification(plan, mount),
+        head, verification,
         (files["drawing"].name, made["drawing"].read_text(encoding="utf-8")),
         made["glb"].read_bytes(), made["bom"].read_text(encoding="utf-8-sig"), elements,
         budget.as_json(), atlas_view(design_file, (plan.full_scale_force_N,
@@ -581,7 +584,11 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     write_review_page(made["review"], contents, import_map())
     listed = {k: made[k].relative_to(staging).as_posix() for k in made
               if k not in NOT_IN_MANIFEST}
-    manifest = die_manifest(head, staging, listed, {"die": plan.as_json(), "rows": elements})
+    manifest = die_manifest(head, staging, listed,
+                            {"die": plan.as_json(), "rows": elements,
+                             # an unbounded figure (a margin, an unreadable K_obj) as null
+                             **finite(die_manifest_sections(plan, verification,
+                                                            budget.as_json()))})
     made["manifest"].write_text(manifest_text(manifest), encoding="utf-8")
 
 

@@ -54,6 +54,33 @@ def die_manifest(head: Mapping[str, Any], folder: Path, files: Mapping[str, str]
     return {**head, "files": listed, **facts}
 
 
+def die_manifest_sections(plan, verification: list[dict],
+                          budget: Mapping[str, Any]) -> dict:
+    """The sections an array's manifest carries, in its layout, for the die: its
+    ``requirements`` (the verification matrix as ``closed_form_matrix``; the die's targets
+    are its own record, ``die``,
+    each beam's ``first_resonance``: Hz, Rayleigh's, on its frame with its post, as ``tactcad
+    modal`` gives it) and its ``kobj_budget`` (``tactcad budget``'s record), so that one
+    script reads every product's manifest the same way.
+
+    Args:
+        plan: the die (``DiePlan``). verification: its verification matrix (one record per
+            requirement). budget: its K_obj budget as JSON.
+
+    Returns:
+        {"requirements": {...}, "kobj_budget": {...}}.
+    """
+    from tactcad.products.silicon_die.mechanics.die_dynamics import first_resonance_Hz
+
+    rows = [{"row": b.row, "role": b.role, "first_Hz": first_resonance_Hz(plan, b)}
+            for b in plan.beams[:: plan.columns]]
+    return {"requirements": {
+        "closed_form_matrix": list(verification),
+        "first_resonance": {"model": "closed-form", "elements": rows,
+                            "lowest_first_Hz": min(r["first_Hz"] for r in rows)}},
+        "kobj_budget": dict(budget)}
+
+
 def write_scene_glb(solids: Mapping[str, tuple[Any, tuple]], path: Path, name: str) -> int:
     """The mount's solids (:func:`tactcad.products.silicon_die.export.die_scene.mount_solids`: part name ->
     (solid in mm, colour)) as one binary glTF scene (:func:`tactcad.export.glb.write_glb`),
