@@ -89,7 +89,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "level")
     dd.set_defaults(func=run_die_bench)
     dj = bsub.add_parser("design-jaw", help="design --jaw on the grasper case at three forces "
-                                           "(goal: an answer <= 60 s)")
+                                           "(goal: an answer <= 30 s)")
     add_output_args(dj, "print one JSON object: each force's seconds and answer")
     dj.set_defaults(func=run_design_jaw)
     at = bsub.add_parser("atlas", help="tactcad atlas on one worker and on two: points/s, "
