@@ -22,25 +22,35 @@ def _test_key(nodeid: str) -> str:
     return path.removeprefix("tests/") + "::" + name.split("[")[0].split("@")[0]
 
 
-#: The longest tests of ``make test`` (a minute or more each, from its ``--durations``),
-#: longest first. pytest-xdist hands out tests in collection order (after its groups), so
-#: these start first, one per worker, instead of one of them starting last and running
-#: alone while the other worker idles.
+#: The longest tests of ``make test`` (ten seconds or more each, from its ``--durations``),
+#: longest first; the ones collected late (``studies/``) matter most. pytest-xdist hands
+#: out tests in collection order (after its groups), so these start first, one per
+#: worker, instead of one of them starting last and running alone while the other idles.
 LONGEST_FIRST = (
     "end_to_end/test_designed_invariant.py::test_the_palpation_strip_designs_and_passes_its_check",
-    "mechanics/test_die_dynamics.py::test_on_its_frame_the_dies_fem3d_agrees_with_calculix_to_one_percent",
-    "commands/test_grasp_cmd.py::test_a_default_grasp_heavier_than_the_closed_jaw_allows_is_the_jaw_closed_flat",
+    "end_to_end/test_random_designs.py::test_a_random_design_of_the_domain_exports_and_passes_its_check",
     "end_to_end/test_designed_invariant.py::test_every_written_design_passes_its_own_check",
+    "mechanics/test_die_dynamics.py::test_on_its_frame_the_dies_fem3d_agrees_with_calculix_to_one_percent",
+    "studies/test_verify_ladder_accuracy.py::test_k_r_over_k_m_climbing_alone_gives_the_records_the_full_matrix_gives",
+    "export/test_live_server.py::test_a_short_load_during_edits_has_no_error_and_prints_its_latencies",
+    "assembly/test_scenes.py::test_collision_fails_check_with_names_and_volume",
+    "commands/test_watch.py::test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly",
+    "api/test_die_project.py::test_a_die_project_runs_the_die_views_the_cli_runs",
+    "docs/test_code_blocks.py::test_page_code_runs[tutorials/mems-die.md]",
+    "design/test_die_fillets.py::test_the_closed_forms_root_peak_is_within_5_percent_of_fem3d_on_and_off_the_example",
     "design/test_example_design.py::test_example_meets_every_requirement_and_its_binding_limit_holds_at_fem3d",
     "end_to_end/test_designed_invariant.py::test_a_refusals_frontier_is_the_searchs_whatever_force_was_asked",
-    "mechanics/test_bonded_layer.py::test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed",
+    "in_use/test_contact_convergence.py::test_an_undecided_tissue_row_is_judged_on_a_finer_check_where_the_cells_allow",
     "in_use/test_tissue_coupling_fem.py::test_two_punches_agree_with_an_elastic_block_within_5_percent",
-    "commands/test_design_jaw.py::test_a_comb_refusals_force_is_the_searchs_frontier_whatever_was_asked",
-    "design/test_die_fillets.py::test_the_closed_forms_root_peak_is_within_5_percent_of_fem3d_on_and_off_the_example",
+    "mechanics/test_gauge_strain_calculix.py::test_fem3d_grid_strain_agrees_with_calculix",
+    "products/test_die_modal_levels.py::test_modal_fem3d_reads_the_die_commands_fem3d_and_keeps_it",
+    "drawings/test_no_overlap.py::test_thirty_random_designs_of_the_domain_draw_clear",
+    "commands/test_design_refused_store.py::test_the_stacked_searchs_refusal_run_again_solves_nothing",
+    "mechanics/test_bonded_layer.py::test_the_stated_layer_errors_hold_against_fem3d_with_the_layer_meshed",
+    "mechanics/test_modal_calculix.py::test_fem3d_first_frequency_agrees_with_calculix",
+    "studies/test_layout_search.py::test_a_soft_range_refusal_offers_a_force_that_designs_far_below_the_best_layouts",
     "docs/test_code_blocks.py::test_page_code_runs[how-to/design-array.md]",
-    "docs/test_code_blocks.py::test_page_code_runs[tutorials/mems-die.md]",
-    "commands/test_watch.py::test_watch_keeps_one_drawing_worker_that_degrades_and_ends_cleanly",
-    "design/test_mems_die.py::test_every_die_designed_or_pasted_passes_its_own_checks",
+    "studies/test_resonance.py::test_a_thin_sheet_is_verified_at_fem3d_whatever_the_level",
 )
 
 
