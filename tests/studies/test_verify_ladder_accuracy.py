@@ -55,6 +55,30 @@ def test_a_less_accurate_level_does_not_decide_what_a_more_accurate_one_left_ope
     assert force["decided_by"] == "closed-form"
 
 
+def test_a_climb_outside_a_store_solves_each_thing_once_for_its_length(monkeypatch):
+    # the API's verification_auto with no store open solved each level's K, grid strain and
+    # stress sequences once per figure reading them (fem2d: five convergences an element)
+    from tactcad.store import Store, active_store, keeping_results, kept_result
+    from tactcad.studies import verification as v
+
+    solved = []
+
+    def matrix(plan, level, *a, **k):
+        kept_result("a solve", lambda: solved.append(level) or 1.0, "the element")
+        return [dict(r) for r in AS_REPORTED[level]]
+
+    monkeypatch.setattr(v, "prefetch_top_level", lambda *a, **k: 0)
+    monkeypatch.setattr(v, "verification_matrix", matrix)
+    _, spent = v.verification_auto(object(), requirements=object(), levels=LADDER)
+    assert [s["model"] for s in spent] == list(LADDER)
+    assert solved == ["closed-form"] and active_store() is None  # kept for the climb alone
+    solved.clear()
+    with keeping_results(Store(None)):  # a caller's own block is the one used
+        kept_result("a solve", lambda: solved.append("before") or 1.0, "the element")
+        v.verification_auto(object(), requirements=object(), levels=LADDER)
+    assert solved == ["before"]
+
+
 def test_without_a_more_accurate_level_it_stays_undecided_and_says_why(monkeypatch):
     records, _ = _auto(monkeypatch, AS_REPORTED, levels=LADDER[:3])
     acc = next(r for r in records if r["requirement"] == "kobj_accuracy_rel")

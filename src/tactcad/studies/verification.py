@@ -1464,7 +1464,25 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
         (records in the matrix's order, [{"model", "seconds", "undecided_before",
         "elements_kept"}] per level run; ``elements_kept`` the part names whose lower-level
         figures the level kept, empty when it solved every element).
+
+    Outside a :func:`tactcad.store.keeping_results` block the climb keeps its solves in
+    memory for its length (``Store(None)``, as ``--no-cache`` does): each level's K, grid
+    strain and peak-stress sequences are solved once, not once per figure that reads them.
     """
+    import contextlib
+
+    from tactcad.store import Store, active_store, keeping_results
+
+    kept = contextlib.nullcontext() if active_store() is not None else keeping_results(Store(None))
+    with kept:
+        return _climbed(plan, progress, requirements, stress, levels, envelope_mm)
+
+
+def _climbed(plan: Plan, progress: Callable[[str], None] | None,
+             requirements: Requirements | None, stress: Callable | None,
+             levels: tuple[str, ...] | None,
+             envelope_mm: Sequence[float] | None) -> tuple[list[dict], list[dict]]:
+    """:func:`verification_auto`'s climb, within a block keeping its solves."""
     import time
 
     from tactcad.mechanics.ladder import models
