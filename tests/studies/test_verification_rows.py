@@ -309,6 +309,36 @@ def test_the_k_obj_resolutions_error_carries_the_grid_strains_error(plan):
     assert none == 0.0
 
 
+def test_a_part_kept_from_below_has_its_force_resolution_read_there_not_solved(plan,
+                                                                             monkeypatch):
+    # a level climbed for the full-scale force alone solved one element at fem3d, yet its
+    # K_obj units read every element's grid strain at fem3d: the bare and the layered
+    # sequences of each part kept from below (six parts: ten fem3d sequences a check)
+    from dataclasses import replace
+
+    from tactcad.mechanics import readout_chain
+    from tactcad.studies.verification import sensing_units
+
+    below = element_figures(plan)  # the closed form's
+    solved, *kept = plan.distinct_elements
+    fig = replace(below, model="fem3d", kept_from={part: "closed-form" for part in kept})
+    asked = []
+
+    def fem3d_reads(plan, model, progress=None, chain=None, parts=None):
+        asked.append((model, tuple(plan.distinct_elements if parts is None else parts)))
+        return {name: {"dF": 1e-3, "eps": {"grid": 1e-4, "error_rel": 0.01}}
+                for name in (plan.distinct_elements if parts is None else parts)}
+
+    monkeypatch.setattr(readout_chain, "element_force_resolution_N", fem3d_reads)
+    units = sensing_units(plan, fig)
+    assert asked == [("fem3d", (solved,))]
+    closed = readout_chain.force_resolution_reads(plan, "closed-form")
+    for slot in plan.slots:
+        part = slot.geometry.part_name
+        want = 1e-3 if part == solved else closed[part]["dF"]
+        assert units.force_resolution_N[slot.number] == pytest.approx(want, rel=1e-12)
+
+
 @pytest.mark.parametrize("design", [EXAMPLE, EXAMPLE.parents[1] / "macro_array" / "macro_array.toml"],
                          ids=["ti_array_2x3", "macro_array"])
 @pytest.mark.parametrize("widen", [1.0, 1.12])

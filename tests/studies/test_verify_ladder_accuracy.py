@@ -55,6 +55,30 @@ def test_a_less_accurate_level_does_not_decide_what_a_more_accurate_one_left_ope
     assert force["decided_by"] == "closed-form"
 
 
+def test_a_climb_outside_a_store_solves_each_thing_once_for_its_length(monkeypatch):
+    # the API's verification_auto with no store open solved each level's K, grid strain and
+    # stress sequences once per figure reading them (fem2d: five convergences an element)
+    from tactcad.store import Store, active_store, keeping_results, kept_result
+    from tactcad.studies import verification as v
+
+    solved = []
+
+    def matrix(plan, level, *a, **k):
+        kept_result("a solve", lambda: solved.append(level) or 1.0, "the element")
+        return [dict(r) for r in AS_REPORTED[level]]
+
+    monkeypatch.setattr(v, "prefetch_top_level", lambda *a, **k: 0)
+    monkeypatch.setattr(v, "verification_matrix", matrix)
+    _, spent = v.verification_auto(object(), requirements=object(), levels=LADDER)
+    assert [s["model"] for s in spent] == list(LADDER)
+    assert solved == ["closed-form"] and active_store() is None  # kept for the climb alone
+    solved.clear()
+    with keeping_results(Store(None)):  # a caller's own block is the one used
+        kept_result("a solve", lambda: solved.append("before") or 1.0, "the element")
+        v.verification_auto(object(), requirements=object(), levels=LADDER)
+    assert solved == ["before"]
+
+
 def test_without_a_more_accurate_level_it_stays_undecided_and_says_why(monkeypatch):
     records, _ = _auto(monkeypatch, AS_REPORTED, levels=LADDER[:3])
     acc = next(r for r in records if r["requirement"] == "kobj_accuracy_rel")
@@ -326,6 +350,7 @@ def test_k_r_over_k_m_climbing_alone_gives_the_records_the_full_matrix_gives(tmp
 
     from tactcad.api import load
     from tactcad.design.domain import draw_design
+    from tactcad.store import Store, keeping_results
     from tactcad.studies import verification as v
     from tactcad.studies.strength_studies import element_stress
 
@@ -346,10 +371,13 @@ def test_k_r_over_k_m_climbing_alone_gives_the_records_the_full_matrix_gives(tmp
         asked.append(model)
         return element_stress(g, material, model)
 
-    records, _ = v.verification_auto(plan, stress=stress, levels=levels)
-    assert set(asked) == {"closed-form"}, asked
-    monkeypatch.setattr(v, "reads_k_alone", lambda open_requirements: False)  # every stress
-    full, _ = v.verification_auto(plan, stress=stress, levels=levels)
+    # one result store for both climbs, as verify keeps one: the full matrix solves the
+    # stresses the first climb left, and reads back the K and grid strains both levels share
+    with keeping_results(Store(None)):
+        records, _ = v.verification_auto(plan, stress=stress, levels=levels)
+        assert set(asked) == {"closed-form"}, asked
+        monkeypatch.setattr(v, "reads_k_alone", lambda open_requirements: False)  # every stress
+        full, _ = v.verification_auto(plan, stress=stress, levels=levels)
     assert "fem2d" in asked
     assert json.dumps(records, sort_keys=True, default=str) == \
         json.dumps(full, sort_keys=True, default=str)

@@ -66,7 +66,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Collection, Mapping
 
 import numpy as np
 
@@ -610,10 +610,15 @@ def force_resolution_N(chain: ReadoutChain, grid_strain_per_N: float,
 
 def element_force_resolution_N(plan: Plan, model: str = "closed-form",
                                progress: Callable[[str], None] | None = None,
-                               chain: ReadoutChain | None = None) -> dict[str, dict]:
+                               chain: ReadoutChain | None = None,
+                               parts: Collection[str] | None = None) -> dict[str, dict]:
     """Per distinct part of ``plan``: its grid strain per newton (:func:`grid_strain_per_N`,
     ``"eps"``), sensitivity (V/N, ``"S"``) and force resolution (N, ``"dF"``: the noise of one
     averaged reading over |S|, 1 sigma) through the design's read-out chain at ``model``.
+
+    Args:
+        parts: the part names to read (default every distinct part); the others are
+            neither solved nor returned.
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
@@ -622,6 +627,8 @@ def element_force_resolution_N(plan: Plan, model: str = "closed-form",
     noise = noise_budget_V(chain)["reading"]
     out = {}
     for name, g in plan.distinct_elements.items():
+        if parts is not None and name not in parts:
+            continue
         if progress:
             progress(f"readout {model}: {name}")
         eps = grid_strain_per_N(g, plan.material, chain, model)
@@ -695,7 +702,8 @@ def unmeshed_force_resolution_N(plan: Plan, model: str = "closed-form") -> dict[
 
 
 def force_resolution_reads(plan: Plan, model: str = "closed-form",
-                           progress: Callable[[str], None] | None = None
+                           progress: Callable[[str], None] | None = None,
+                           parts: Collection[str] | None = None
                            ) -> dict[str, dict[str, float]]:
     """Per distinct part: its force resolution through the read-out chain at ``model``
     (``"dF"``, N, 1 sigma) and the relative error of the grid strain it divides by
@@ -707,20 +715,26 @@ def force_resolution_reads(plan: Plan, model: str = "closed-form",
     Args:
         plan: the design. model: the ladder level. progress: one line per part solved (the
             finite-element levels).
+        parts: the part names to read (default every distinct part): a level that keeps
+            some parts' figures from below (:attr:`tactcad.studies.verification.Figures.
+            kept_from`) reads those there and solves none of them.
 
     Returns:
-        ``{part name: {"dF": N, "strain_error_rel": dimensionless}}``.
+        ``{part name: {"dF": N, "strain_error_rel": dimensionless}}``, the parts asked for.
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
     """
     if is_meshed(model):
         return {name: {"dF": d["dF"], "strain_error_rel": grid_strain_error_rel(d["eps"])}
-                for name, d in element_force_resolution_N(plan, model, progress).items()}
+                for name, d in element_force_resolution_N(plan, model, progress,
+                                                          parts=parts).items()}
     chain = readout_chain(plan)
     noise = noise_budget_V(chain)["reading"]
     out = {}
     for name, g in plan.distinct_elements.items():
+        if parts is not None and name not in parts:
+            continue
         eps, error = unmeshed_grid_read(g, plan.material, chain, model)
         out[name] = {"dF": force_resolution_N(chain, eps, noise), "strain_error_rel": error}
     return out

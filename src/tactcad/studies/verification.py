@@ -411,7 +411,10 @@ class SensingUnits:
 def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
     """The units of ``plan`` with the K of ``fig``'s level, each element's force
     resolution through the read-out chain at that level (a FEM level reads the gauge
-    strain off its own solves) and the largest error of those grid strains.
+    strain off its own solves) and the largest error of those grid strains. A part whose
+    figures were kept from a lower level (:attr:`Figures.kept_from`) has its force
+    resolution read at that level too, beside the K it carries from there: the level does
+    not solve it (at fem3d two mesh sequences a part, the bare and the layered element).
 
     Raises:
         UnknownModelError: ``fig.model`` is not a ladder level.
@@ -419,7 +422,10 @@ def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
     from tactcad.mechanics.readout_chain import force_resolution_reads, row_units
     from tactcad.mechanics.resolution import ReadUnit
 
-    reads = force_resolution_reads(plan, fig.model)
+    reads = {}
+    for level in dict.fromkeys(fig.level_of(part) for part in plan.distinct_elements):
+        parts = [part for part in plan.distinct_elements if fig.level_of(part) == level]
+        reads.update(force_resolution_reads(plan, level, parts=parts))
     read, errors, strain_errors = [], [], [0.0]
     for ref, meas in row_units(plan, fig.k):
         r, m = ref.geometry.part_name, meas.geometry.part_name
@@ -1458,7 +1464,25 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
         (records in the matrix's order, [{"model", "seconds", "undecided_before",
         "elements_kept"}] per level run; ``elements_kept`` the part names whose lower-level
         figures the level kept, empty when it solved every element).
+
+    Outside a :func:`tactcad.store.keeping_results` block the climb keeps its solves in
+    memory for its length (``Store(None)``, as ``--no-cache`` does): each level's K, grid
+    strain and peak-stress sequences are solved once, not once per figure that reads them.
     """
+    import contextlib
+
+    from tactcad.store import Store, active_store, keeping_results
+
+    kept = contextlib.nullcontext() if active_store() is not None else keeping_results(Store(None))
+    with kept:
+        return _climbed(plan, progress, requirements, stress, levels, envelope_mm)
+
+
+def _climbed(plan: Plan, progress: Callable[[str], None] | None,
+             requirements: Requirements | None, stress: Callable | None,
+             levels: tuple[str, ...] | None,
+             envelope_mm: Sequence[float] | None) -> tuple[list[dict], list[dict]]:
+    """:func:`verification_auto`'s climb, within a block keeping its solves."""
     import time
 
     from tactcad.mechanics.ladder import models
