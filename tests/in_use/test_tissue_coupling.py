@@ -231,3 +231,24 @@ def test_an_R_the_coupled_model_cannot_invert_is_unreadable_not_an_error(monkeyp
     record = bias.as_json()
     assert record["bias_corrected_rel"] == [None, None]
     assert record["worst_corrected_rel"] is None and bias.worst_corrected_rel == float("inf")
+
+
+def test_the_face_alone_is_solved_once_a_process_without_a_store():
+    # every layout of one face and tissue is normalised by the same face's solve: solved
+    # once, each layout's compliance the same as with the face solved afresh
+    from tactcad.in_use import tissue_coupling as tc
+    from tactcad.mechanics.contact import converged_punches
+
+    tissue = Tissue(poisson_ratio=0.5, thickness_mm=None)
+    tc._face_alone.cache_clear()
+    tc._normalised_compliance.cache_clear()
+    for pitch in (0.7, 0.9):
+        punches = [Punch(0.0, 0.0, 0.1, 0.1), Punch(pitch, 0.0, 0.1, 0.1)]
+        sample = tc.coupled_sample_from_punches([1, 2], punches, tissue)
+        unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
+        alone = converged_punches([Punch(0.0, 0.0, 0.1, 0.1)], unit, tissue.convergence_rel)
+        tips = converged_punches(punches, unit, tissue.convergence_rel)
+        assert np.array_equal(sample.normalised,
+                              tips.compliance_mm_per_N / float(alone.compliance_mm_per_N[0, 0]))
+    info = tc._face_alone.cache_info()
+    assert (info.misses, info.hits) == (1, 1)

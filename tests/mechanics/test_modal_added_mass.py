@@ -142,3 +142,18 @@ def test_closed_form_out_of_plane_bounds_hold_fem3d(row):
     r = estimate_modal_closed_form(g, plan.material, modes=2)
     assert [m.family for m in r.modes] == ["in-plane", "out-of-plane"]
     assert r.first_of("in-plane") == pytest.approx(row["first_in_plane_Hz"], rel=0.03)
+
+
+def test_out_of_plane_bounds_with_and_without_added_masses_are_each_their_own_calls():
+    # one pass over the chords gives both pairs, each to the bit what its own call gives
+    from tactcad.mechanics.modal_closed_form import (out_of_plane_bounds,
+                                                     out_of_plane_bounds_with_and_without)
+
+    plan = load_design("hardware/ti_array_2x3/ti_array_2x3.toml")
+    g = plan.distinct_elements["element_a19p605mm"]
+    tip = PointMass("tip", 20e-3, *g.contact_centre_mm)
+    for added in ((tip,), ()):
+        loaded, bare = out_of_plane_bounds_with_and_without(g, plan.material, added)
+        assert loaded == out_of_plane_bounds(g, plan.material, added)
+        assert bare == out_of_plane_bounds(g, plan.material)
+    assert loaded == bare  # nothing added: the one pair

@@ -468,3 +468,22 @@ def test_design_rows_help_says_two_and_a_wrong_count_is_refused_as_the_option(ca
                  "--full-scale-force", "0.05", "--out", "never_written.toml", "--json"])
     err = json.loads(capsys.readouterr().out)["error"]
     assert code == 2 and err["field"] == "--rows" and err["allowed"] == "2"
+
+
+def test_a_read_out_chain_is_kept_by_its_table_and_gauge_and_told_apart_by_each():
+    # a search reads every candidate's chain: one chain per [readout] table and gauge,
+    # shared; a table differing in an entry's value or type (2 against 2.0) is its own
+    from tactcad.design.readout_section import readout_of, resolved_readout
+    from tactcad.vocabulary.material_library import strain_gauge
+
+    gauge = strain_gauge("constantan-foil-hbm-y")
+    for table in ({}, {"excitation_V": 2}, {"excitation_V": 2.0},
+                  {"daq_ranges_V": [1.0, 10.0]}):
+        raw = {"design": {"name": "x"}, "readout": dict(table)}
+        chain = readout_of(raw, gauge)
+        assert chain == resolved_readout(raw, gauge)
+        assert readout_of({"other": 1, "readout": dict(table)}, gauge) is chain
+    two, two_float = (readout_of({"readout": {"excitation_V": v}}, gauge) for v in (2, 2.0))
+    assert two is not two_float and type(two.excitation_V) is int
+    assert readout_of({}, gauge) is readout_of({"readout": {}}, gauge) or \
+        readout_of({}, gauge) == readout_of({"readout": {}}, gauge)

@@ -576,13 +576,74 @@ def gauge_factor_tc_source(gauge) -> str:
             "state readout.gauge_factor_tc_pct_per_100K from it")
 
 
+#: Most read-out chains :func:`readout_of` keeps in a process: a design search reads the
+#: chain of every candidate's plan (its stops, limits and verification matrix), and every
+#: candidate of a search has the same ``[readout]`` and gauge.
+READOUTS_KEPT = 256
+_READOUTS: dict[tuple, "ReadoutChain"] = {}
+
+
 def readout_of(raw: Mapping[str, Any], gauge) -> ReadoutChain:
-    """The read-out chain of a design's raw tables (validated before).
+    """The read-out chain of a design's raw tables (validated before): a function of their
+    ``[readout]`` table and the gauge alone (:func:`resolved_readout`), kept per process
+    by the two (the table's entries by their type and repr, so 2 and 2.0 are apart); the
+    chain is frozen, so the kept one is shared.
 
     Args:
         raw: the design's tables (``[readout]`` optional).
         gauge: the design's library :class:`~tactcad.vocabulary.material_library.StrainGauge`
             (gauge factor and resistance unless the file gives them).
+
+    Returns:
+        The chain (:func:`resolved_readout`'s).
+    """
+    table = raw.get("readout") if isinstance(raw, Mapping) else None
+    try:
+        key = (gauge, readout_key(table))
+        kept = _READOUTS.get(key)
+    except TypeError:  # a gauge or an entry that does not hash: not a library's or TOML's
+        return resolved_readout(raw, gauge)
+    if kept is None:
+        kept = resolved_readout(raw, gauge)
+        if len(_READOUTS) >= READOUTS_KEPT:
+            _READOUTS.clear()
+        _READOUTS[key] = kept
+    return kept
+
+
+def readout_key(table: Any) -> tuple:
+    """A key of a ``[readout]`` table that tells apart every two tables a chain may tell
+    apart: each entry by its key, its type and its repr (lists item by item), in the
+    table's order.
+
+    Args:
+        table: the table (a mapping), or anything else (no table: its type alone).
+
+    Returns:
+        A hashable key.
+    """
+    if not isinstance(table, Mapping):
+        return ("no table", type(table).__name__)
+    return tuple((k, _entry_key(v)) for k, v in table.items())
+
+
+def _entry_key(value: Any) -> tuple:
+    if isinstance(value, (list, tuple)):
+        return (type(value).__name__, tuple(_entry_key(v) for v in value))
+    return (type(value).__name__, repr(value))
+
+
+def resolved_readout(raw: Mapping[str, Any], gauge) -> ReadoutChain:
+    """:func:`readout_of` worked out afresh.
+
+    Args:
+        raw: the design's tables (``[readout]`` optional).
+        gauge: the design's library :class:`~tactcad.vocabulary.material_library.StrainGauge`
+            (gauge factor and resistance unless the file gives them).
+
+    Returns:
+        The chain: the table's values, the rest from the gauge and the defaults, each with
+        its source.
     """
     gs = dict(gauge.sources)
     from_gauge = {"gauge_factor": (gauge.gauge_factor, gs.get("gauge_factor", "")),

@@ -43,7 +43,7 @@ import numpy as np
 from tactcad.mechanics.contact import (CONVERGED_KIND, CONVERGED_REL, ContactError, Punch, Sample,
                                        check_sample, converged_punches)
 from tactcad.mechanics.lumped_model import deflection_ratio, object_stiffness
-from tactcad.store import kept_per_process, kept_result
+from tactcad.store import active_store, kept_per_process, kept_result
 
 #: Soft tissue and rubber phantoms are nearly incompressible (an assumption the user can change).
 TISSUE_POISSON_RATIO = 0.5
@@ -180,6 +180,24 @@ def indenter_face(tissue: Tissue, punches: Sequence[Punch]) -> tuple[float, floa
     return float(face[0]), float(face[1])
 
 
+@kept_per_process(maxsize=8)
+def _face_alone(face: tuple[float, float], tissue: Tissue):
+    """The converged solve of the indenter's face alone on the unit sample (E = 1) of
+    ``tissue`` (:func:`~tactcad.mechanics.contact.converged_punches`): the C_1 every
+    layout's compliance is normalised by, a function of the face (mm) and the tissue alone,
+    so solved once per process where no result store keeps it (a design search's or an
+    atlas's task judges many layouts against one face).
+
+    Args:
+        face: the indenter's face (width x depth, mm). tissue: the sample.
+
+    Returns:
+        The :class:`~tactcad.mechanics.contact.ConvergedPunches` (read, never changed).
+    """
+    unit = Sample(1.0, tissue.poisson_ratio, tissue.thickness_mm)
+    return converged_punches([Punch(0.0, 0.0, face[0], face[1])], unit, tissue.convergence_rel)
+
+
 @kept_per_process(maxsize=32)
 def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
                            face: tuple[float, float]) -> tuple[np.ndarray, float]:
@@ -194,7 +212,9 @@ def _normalised_compliance(punches: tuple[Punch, ...], tissue: Tissue,
                            lambda: converged_punches(tips, unit, tissue.convergence_rel),
                            tuple(tips), unit, tissue.convergence_rel)
 
-    alone = solved([Punch(0.0, 0.0, face[0], face[1])])
+    # the indenter's face alone: the same solve for every layout of one face and tissue
+    alone = (solved([Punch(0.0, 0.0, face[0], face[1])]) if active_store() is not None
+             else _face_alone(face, tissue))
     tips = solved(list(punches))
     c1 = float(alone.compliance_mm_per_N[0, 0])
     return tips.compliance_mm_per_N / c1, max(alone.error_rel, tips.error_rel)

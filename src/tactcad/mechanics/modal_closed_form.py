@@ -223,6 +223,27 @@ def out_of_plane_bounds(g: ElementGeometry, material: Material,
     rectangle (:func:`rectangle_torsion_constant`); the mass matrix from the exact
     profile's chords (u_z = w(x) + phi(x) (y - y_w), plus the twist's u_y) and the
     ``added_masses`` at their places; the lowest root of det(K - omega^2 M) = 0."""
+    return out_of_plane_bounds_with_and_without(g, material, added_masses)[0]
+
+
+def out_of_plane_bounds_with_and_without(g: ElementGeometry, material: Material,
+                                         added_masses: tuple[PointMass, ...] = ()
+                                         ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """:func:`out_of_plane_bounds` with ``added_masses`` and without them (the bare
+    element), from one pass over the profile's chords: the shapes, stiffnesses and the
+    element's own mass terms do not depend on the added masses, which only add to the
+    mass terms, so each pair is, to the bit, what its own call gives.
+
+    Args:
+        g: element geometry (mm). material: E (MPa), nu, density (g/cm^3).
+        added_masses: :class:`~tactcad.mechanics.modal_result.PointMass` on the element.
+
+    Returns:
+        ((upper, lower) with the added masses, (upper, lower) without them) (Hz).
+
+    Raises:
+        DesignError: the material has no density.
+    """
     rho = density_t_per_mm3(material)
     xh, yw = g.web_centre_mm
     x0 = xh - g.notch_radius_mm
@@ -242,18 +263,27 @@ def out_of_plane_bounds(g: ElementGeometry, material: Material,
     k_phi = 1.0 / phi[-1]  # N mm / rad at the free end
     phi = phi / phi[-1]
     # kinetic energy: u_z = a w + c phi (y - yw), u_y = -c phi z (about the mid-plane)
-    m_ww = rho * b * np.sum(w * w * h) * dx
-    m_wp = rho * b * np.sum(w * phi * first) * dx
-    m_pp = rho * b * np.sum(phi * phi * (second + h * b * b / 12.0)) * dx
+    bare = (rho * b * np.sum(w * w * h) * dx, rho * b * np.sum(w * phi * first) * dx,
+            rho * b * np.sum(phi * phi * (second + h * b * b / 12.0)) * dx)
+    m_ww, m_wp, m_pp = bare
     for m in added_masses:
         wi = float(np.interp(m.x_mm, xs, w, left=0.0))
         pi = float(np.interp(m.x_mm, xs, phi, left=0.0)) * (m.y_mm - yw)
         m_ww, m_wp, m_pp = m_ww + m.mass_t * wi * wi, m_wp + m.mass_t * wi * pi, \
             m_pp + m.mass_t * pi * pi
     stiffness = np.diag([k_w, k_phi])
-    mass = np.array([[m_ww, m_wp], [m_wp, m_pp]])
+    loaded = _rayleigh_ritz_bounds(stiffness, k_w, m_ww, m_wp, m_pp)
+    return loaded, (_rayleigh_ritz_bounds(stiffness, k_w, *bare) if added_masses else loaded)
+
+
+def _rayleigh_ritz_bounds(stiffness: np.ndarray, k_w: float, m_ww: float, m_wp: float,
+                          m_pp: float) -> tuple[float, float]:
+    """(bending alone, bending and twist) frequencies (Hz) of the two-shape Rayleigh-Ritz
+    problem: ``stiffness`` diag(k_w (N/mm), k_phi (N mm/rad)), the mass terms (t, t mm,
+    t mm^2)."""
     from scipy.linalg import eigh
 
+    mass = np.array([[m_ww, m_wp], [m_wp, m_pp]])
     lam = eigh(stiffness, mass, eigvals_only=True)
     return (math.sqrt(k_w / m_ww) / (2 * math.pi), math.sqrt(max(lam[0], 0.0)) / (2 * math.pi))
 
@@ -272,7 +302,13 @@ def out_of_plane_frequency(g: ElementGeometry, material: Material,
     :data:`THIN_SHEET_OUT_OF_PLANE_ERROR_REL`. The error is a factor about the mean, made
     for close bounds: above 1 (bounds more than a factor 4 apart) it is no +/- (the mean
     less it is below 0 Hz), and only the bounds (:func:`mode_with_error`) say anything."""
-    upper, lower = out_of_plane_bounds(g, material, added_masses)
+    return frequency_of_bounds(g, *out_of_plane_bounds(g, material, added_masses))
+
+
+def frequency_of_bounds(g: ElementGeometry, upper: float, lower: float) -> tuple[float, float]:
+    """:func:`out_of_plane_frequency` of its bounds (Hz): (their geometric mean (Hz), the
+    relative error sqrt(upper / lower) - 1, at least
+    :data:`THIN_SHEET_OUT_OF_PLANE_ERROR_REL` in a thin sheet)."""
     err = math.sqrt(upper / lower) - 1.0
     if out_of_plane_may_lead(g):
         err = max(err, THIN_SHEET_OUT_OF_PLANE_ERROR_REL)
@@ -359,8 +395,10 @@ def estimate_modal_closed_form(g: ElementGeometry, material: Material, *,
     m = effective_mass_t(g, material, beta)
     m_add = added_mass_t(added_masses, lambda x, y: in_plane_shape_sq(g, beta, x, y))
     f_in = math.sqrt(k.stiffness_N_per_mm / (m + m_add)) / (2 * math.pi)
-    f_out, out_error = out_of_plane_frequency(g, material, added_masses)
-    f_out_bare = out_of_plane_frequency(g, material)[0] if added_masses else f_out
+    # with and without the added masses from one pass over the chords
+    loaded, bare = out_of_plane_bounds_with_and_without(g, material, added_masses)
+    f_out, out_error = frequency_of_bounds(g, *loaded)
+    f_out_bare = frequency_of_bounds(g, *bare)[0] if added_masses else f_out
     found = sorted([(f_in, "in-plane", math.sqrt(k.stiffness_N_per_mm / m) / (2 * math.pi),
                      SHAPE_ERROR_REL),
                     (f_out, "out-of-plane", f_out_bare, out_error)])[:max(1, min(modes, 2))]
