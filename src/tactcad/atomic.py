@@ -15,11 +15,14 @@ from typing import Callable, Iterator
 
 
 @contextlib.contextmanager
-def atomic_path(target: str | Path, noted: bool = True) -> Iterator[Path]:
+def atomic_path(target: str | Path, noted: bool = True, durable: bool = True) -> Iterator[Path]:
     """Yield a temporary path beside ``target``; on success it replaces ``target``
     (``os.replace``, atomic on POSIX), on any error it is removed. ``noted``: the file
     counts among what an interrupted run says it wrote (:func:`note_changed`); False for
-    a store's entries, which are no file of the user's."""
+    a store's entries, which are no file of the user's. ``durable``: the file is flushed
+    to the disk (``fsync``, milliseconds each) before it takes the target's place, so a
+    power cut never leaves it empty; False for a store's entries, which a reader that
+    finds one damaged takes as a miss (and recomputes)."""
     target = Path(target)
     target.parent.mkdir(parents=True, exist_ok=True)
     try:
@@ -31,8 +34,9 @@ def atomic_path(target: str | Path, noted: bool = True) -> Iterator[Path]:
     os.chmod(tmp_path, 0o644)  # mkstemp creates 0600; exports are for sharing
     try:
         yield tmp_path
-        with open(tmp_path, "rb+") as fh:
-            os.fsync(fh.fileno())
+        if durable:
+            with open(tmp_path, "rb+") as fh:
+                os.fsync(fh.fileno())
         os.replace(tmp_path, target)
         if noted and not any(".staging-" in part for part in target.parent.parts):  # published
             note_changed(target)
@@ -461,9 +465,11 @@ def write_atomic(target: str | Path, writer: Callable[[Path], object],
     return Path(target)
 
 
-def write_bytes_atomic(target: str | Path, data: bytes, noted: bool = True) -> Path:
-    """Write ``data`` to ``target`` atomically (``noted``: see :func:`atomic_path`)."""
-    with atomic_path(target, noted) as tmp:
+def write_bytes_atomic(target: str | Path, data: bytes, noted: bool = True,
+                       durable: bool = True) -> Path:
+    """Write ``data`` to ``target`` atomically (``noted``, ``durable``: see
+    :func:`atomic_path`)."""
+    with atomic_path(target, noted, durable) as tmp:
         tmp.write_bytes(data)
     return Path(target)
 

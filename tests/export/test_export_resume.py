@@ -88,6 +88,30 @@ def test_a_store_entry_is_not_among_the_files_an_interrupt_names(tmp_path):
     assert changed_paths() == []
 
 
+def test_a_store_entry_is_written_without_fsync_and_a_damaged_one_is_a_miss(tmp_path,
+                                                                          monkeypatch):
+    """A store entry is not flushed to the disk (milliseconds each, a second of a cold
+    export); what a power cut could leave of it (nothing, or its start) reads as a miss.
+    An export's own files still are flushed."""
+    import os
+
+    from tactcad.atomic import write_bytes_atomic
+
+    synced = []
+    real_fsync = os.fsync
+    monkeypatch.setattr(os, "fsync", lambda fd: synced.append(fd) or real_fsync(fd))
+    store, key = Store(tmp_path / "store"), "cd" + "3" * 62
+    store.remember(key, {"value": list(range(100))})
+    assert synced == [] and store.recall(key) == (True, {"value": list(range(100))})
+    kept = store._memo_path(key)
+    whole = kept.read_bytes()
+    for damaged in (b"", whole[: len(whole) // 2], b"\0" * len(whole)):
+        kept.write_bytes(damaged)
+        assert store.recall(key) == (False, None)
+    write_bytes_atomic(tmp_path / "export" / "a.txt", b"a")
+    assert len(synced) == 1
+
+
 def test_an_interrupted_export_names_no_store_entry(tmp_path, monkeypatch, capsys):
     """The line a stopped export ends with is about the lab's files: what the run kept in
     its store (a projected view, a solve) is no file it wrote for them."""

@@ -129,3 +129,21 @@ def test_a_moved_copy_of_the_design_has_the_same_job_keys(tmp_path):
     rigs.write_text(text.replace("length_mm = 260.0", "length_mm = 270.0", 1), encoding="utf-8")
     before, edited = keys(here), keys(moved)  # the base plate 10 mm longer
     assert {n for n in before if edited[n] != before[n]} >= {"bom", "drawing:base_plate"}
+
+
+def test_a_run_solves_each_scene_once(project, tmp_path, monkeypatch):
+    """The scene's STEP and glTF job, its review file and the build book's pictures read
+    one solved scene per run (each solve places every part by its joints)."""
+    from tactcad.assembly import scene_solver
+    from tactcad.export.job import Run
+    from tactcad.export.jobs import _scene
+
+    solved = []
+    real = scene_solver.build_scene
+    monkeypatch.setattr(scene_solver, "build_scene",
+                        lambda p, name, cache=None: solved.append(name) or real(p, name, cache))
+    run = Run(project, tmp_path, log=lambda line: None)
+    first = run.scene("wirecut")
+    records = _scene("wirecut")(run)
+    assert run.scene("wirecut") is first and solved == ["wirecut"]
+    assert {r["kind"] for r in records} == {"step-scene", "glb-scene"}

@@ -81,11 +81,57 @@ def test_a_part_mesh_is_kept_by_its_spec_and_read_back_without_a_build(tmp_path,
     with keeping_results(Store(tmp_path)), counting_results() as again:
         cache = PartCache(plan)
         read = cache.mesh(spec)
-    assert first.computed == {"part mesh": 1} and again.reused == {"part mesh": 1}
+    from tactcad.solids.cache import SOLID_KIND
+
+    # the solid is kept too when it is built for the mesh
+    assert first.computed == {"part mesh": 1, SOLID_KIND: 1} and again.reused == {"part mesh": 1}
     assert cache.builds == 0  # a kept mesh needs no solid
     assert len(made[1]) > 0
     np.testing.assert_array_equal(read[0], made[0])
     np.testing.assert_array_equal(read[1], made[1])
+
+
+def test_a_part_solid_is_kept_by_its_spec_and_read_back_without_a_build(tmp_path, plan):
+    """A run where one part changed reads the others' solids back from the store: no
+    build, and the STEP file written from the solid read back is the one a build writes
+    (every run works on the solid as its BREP reads back)."""
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.kernel.step_writer import StepPart, write_step
+    from tactcad.solids.build import BUILD_COUNTS
+    from tactcad.solids.cache import SOLID_KIND, PartCache
+    from tactcad.store import Store, counting_results, keeping_results
+
+    spec = array_parts(plan)["clamp_plate"]
+    with keeping_results(Store(tmp_path / "store")), counting_results() as first:
+        built = PartCache(plan).solid(spec)
+    before = BUILD_COUNTS[spec.name]
+    with keeping_results(Store(tmp_path / "store")), counting_results() as again:
+        cache = PartCache(plan)
+        read = cache.solid(spec)
+    assert first.computed == {SOLID_KIND: 1} and again.reused == {SOLID_KIND: 1}
+    assert cache.builds == 0 and BUILD_COUNTS[spec.name] == before
+    assert read.volume == built.volume
+    (tmp_path / "built").mkdir()
+    (tmp_path / "read").mkdir()
+    one, two = tmp_path / "built" / "part.step", tmp_path / "read" / "part.step"
+    write_step(one, [StepPart(spec.name, built, (0.5, 0.5, 0.5))])
+    write_step(two, [StepPart(spec.name, read, (0.5, 0.5, 0.5))])
+    assert one.read_bytes() == two.read_bytes()
+
+
+def test_a_solid_whose_brep_does_not_read_back_is_built_in_every_run(tmp_path, plan,
+                                                                      monkeypatch):
+    from tactcad.catalogue.array_catalogue import array_parts
+    from tactcad.solids import cache as solids_cache
+    from tactcad.store import Store, keeping_results
+
+    monkeypatch.setattr(solids_cache, "read_back", lambda solid: (None, solid))
+    spec = array_parts(plan)["spacer"]
+    for _ in range(2):
+        with keeping_results(Store(tmp_path / "store")):
+            cache = solids_cache.PartCache(plan)
+            assert cache.solid(spec).volume > 0
+        assert cache.builds == 1
 
 
 def test_a_damaged_entry_is_a_miss_and_the_next_keep_replaces_it(tmp_path):

@@ -379,10 +379,8 @@ def instructions_jobs(run, before):
     specs, inst = run.array
 
     def make(run) -> list[dict]:
-        from tactcad.assembly.scene_solver import build_scene
-
         def scene_of(name: str):
-            scene, _ = build_scene(run.project, name, run.parts)
+            scene, _ = run.scene(name)
             return scene.instances, scene.parts(), scene.joint_axes()
         with keeping_run_results(run):
             return write_book(run.project, run.staging, run.log, run.inventory, run.array,

@@ -31,6 +31,8 @@ class Run:
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
     #: jobs the run's second process made (:mod:`tactcad.export.worker`), in the order collected
     worker_made: list[str] = field(default_factory=list)
+    #: the scenes solved in this run by name, with their parts' solids (:meth:`scene`)
+    _scenes: dict[str, tuple[Any, dict[str, Any]]] = field(default_factory=dict, repr=False)
 
     @property
     def plan(self) -> Plan:
@@ -60,6 +62,21 @@ class Run:
         samples no scene shows (each drawn; :func:`tactcad.assembly.inventory.fabricated_parts`)."""
         made, _ = fabricated_parts(self.project, self.inventory)
         return len(set(self.inventory[0]) | {s.name for s in made})
+
+    def scene(self, name: str) -> tuple[Any, dict[str, Any]]:
+        """Scene ``name`` solved, with its shown parts' solids by part name
+        (:func:`~tactcad.assembly.scene_solver.build_scene` on :attr:`parts`), once per
+        run: the scene's STEP and glTF job, its review file and the build book's
+        pictures read the same one. Shared: read it, do not change it.
+
+        Raises:
+            SceneError: as :func:`~tactcad.assembly.scene_solver.build_scene`.
+        """
+        if name not in self._scenes:
+            from tactcad.assembly.scene_solver import build_scene
+
+            self._scenes[name] = build_scene(self.project, name, self.parts)
+        return self._scenes[name]
 
     @cached_property
     def parts(self):

@@ -190,12 +190,12 @@ def scene_jobs(run: Run, names=None) -> list[Job]:
 
 def _scene(name: str):
     def make(run: Run) -> list[dict]:
-        from tactcad.assembly.scene_solver import build_scene, review_record
+        from tactcad.assembly.scene_solver import review_record
         from tactcad.assembly.z_up import z_up_location
         from tactcad.export.glb import write_glb
         from tactcad.kernel.step_writer import StepInstance, StepPart, write_step
 
-        scene, solids = build_scene(run.project, name, run.parts)
+        scene, solids = run.scene(name)
         parts = [StepPart(n, solids[n], spec.color) for n, spec in scene.parts().items()]
         z_up = z_up_location()  # STEP is Z up, the GLB keeps glTF's y up
         inst = [StepInstance(i.name, i.part, z_up * i.location) for i in scene.instances]
@@ -214,12 +214,11 @@ def _scene(name: str):
 def _start_review(names: list[str]):
     """FreeCAD writes the review files in its own process while the run goes on."""
     def start(run: Run):
-        from tactcad.assembly.scene_solver import build_scene
         from tactcad.export.freecad_review import scene_review_assembly, start_review_files
 
         assemblies = []
         for name in names:
-            scene, solids = build_scene(run.project, name, run.parts)
+            scene, solids = run.scene(name)
             assemblies.append(scene_review_assembly(scene, solids, scene_step_name(name)))
         return start_review_files(run.staging, assemblies, run.log)
     return start
