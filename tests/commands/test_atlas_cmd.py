@@ -503,7 +503,7 @@ def test_a_projects_commands_name_its_jaw_file_from_where_they_are_pasted(tmp_pa
         [inside] = project_records([record], given, given, design.parent)
     finally:
         os.chdir(old_cwd)
-    point_folder = "lab_atlas_monolithic_comb_17_4ph_h900_3"
+    point_folder = "lab_comb_174ph_3"
     words = shlex.split(here["command"])
     assert words[words.index("--jaw") + 1] == given
     assert words[words.index("--out") + 1] == f"{tmp_path.name}/{point_folder}"

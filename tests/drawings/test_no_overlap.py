@@ -90,6 +90,44 @@ def test_the_paper_designs_element_sizes_that_overlapped_draw_clear(overrides, p
     assert n == len(parts) and failed == []
 
 
+#: Names of the name rule's most characters (64): one that breaks at its underscores, one of
+#: its widest letter that fits on no two lines of the drawing number's cell.
+LONGEST_NAMES = {"underscores": "abcdefghij_" * 5 + "abcdefghi", "widest": "W" * 64}
+#: The comb example (issue: a 42-character atlas name failed check on every sheet).
+COMB_EXAMPLE = DEFAULT_DESIGN.parents[1] / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml"
+
+
+@pytest.mark.parametrize("kind", sorted(LONGEST_NAMES))
+@pytest.mark.parametrize("design, parts", [
+    (EXAMPLE_DESIGN, ("terminal_board", "assembly")),
+    (COMB_EXAMPLE, ("comb_row1", "comb_spacer", "assembly")),
+], ids=["example", "comb"])
+def test_a_design_name_of_the_rules_64_characters_fits_every_title_block(design, parts, kind,
+                                                                         tmp_path):
+    """The drawing number (``<name>-<part>``) ran 3 mm past its cell and the frame at 42
+    characters: it is set smaller, then on two lines, then shortened in its middle, the
+    sheet's SVG title keeping the name whole."""
+    import xml.etree.ElementTree as ET
+
+    name = LONGEST_NAMES[kind]
+    assert len(name) == 64
+    project = design_file_project(design, {"design.name": name})
+    n, failed = drawings_check(project, tmp_path, parts)
+    assert n == len(parts) and failed == []
+    for part in parts:
+        svg = (tmp_path / "drawings" / f"{part}.svg").read_text(encoding="utf-8")
+        root = ET.fromstring(svg)
+        texts = {el.get("id"): el.text for el in root.iter("{http://www.w3.org/2000/svg}text")}
+        number = texts["tb-number"] + texts["tb-number-2"]
+        if kind == "underscores":
+            assert number == f"{name}-{part}"
+        else:
+            head, tail = number.split("…")
+            assert name.startswith(head) and f"{name}-{part}".endswith(tail)
+            assert tail.endswith(f"W-{part}") and len(head) > 10
+        assert name in root.findtext("{http://www.w3.org/2000/svg}title")
+
+
 @pytest.mark.slow  # a whole chain through the command line or an export
 def test_the_2x6_titanium_grasper_insert_draws_clear(tmp_path):
     """Every sheet of the grasper insert: both element sheets (0.09 mm over a

@@ -118,12 +118,25 @@ def test_a_leader_near_the_frame_turns_its_shoulder_back_onto_the_sheet():
     assert first.at[0] > 390.0          # the end asked for was tried first
 
 
-def test_a_title_block_value_too_long_for_its_cell_is_cut_at_a_word():
-    from tactcad.drawings.frame import fitted_text
+def test_a_title_block_value_too_long_for_its_cell_goes_on_two_lines_then_shortens():
+    from tactcad.drawings.frame import MIN_VALUE_MM, value_lines
 
+    room = 0.9 * (60 - 3)  # the drawing number's cell
+    short = "ti_array_2x3-spacer"
+    assert value_lines(short, 3.5, room) == (3.5, [short])
+    h, lines = value_lines("abcdefghij_abcdefghij_abcdefghij", 3.5, room)
+    assert MIN_VALUE_MM < h < 3.5 and len(lines) == 1
+    number = "abcdefghij_" * 5 + "abcdefghi-terminal_board"
+    h, lines = value_lines(number, 3.5, room)
+    assert h == MIN_VALUE_MM and "".join(lines) == number and lines[0].endswith("_")
+    number = "W" * 64 + "-terminal_board"
+    h, lines = value_lines(number, 3.5, room)
+    assert lines[0].startswith("W") and lines[1].startswith("…") and number.endswith(lines[1][1:])
     text = "bought-in grasper jaw, machined for the insert: pocket and window by wire EDM"
-    room = text_width(text, 1.8) / 2
-    cut = fitted_text(text, 1.8, room)
-    assert cut.endswith(" …") and text.startswith(cut[:-2])
-    assert text_width(cut, 1.8) <= room
-    assert fitted_text("short", 1.8, room) == "short"
+    h, lines = value_lines(text, 3.5, text_width(text, 1.8) * 0.6)
+    assert " ".join(lines) == text
+    for value in (text, number, "abcdefghij_" * 5 + "abcdefghi-terminal_board"):
+        h, lines = value_lines(value, 3.5, room)
+        assert all(text_width(line, h) <= room for line in lines)
+
+

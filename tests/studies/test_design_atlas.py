@@ -364,7 +364,37 @@ def test_each_materials_command_at_a_point_writes_its_own_file():
     assert len(set(outs.values())) == 3
     assert all(o.endswith("_6.toml") and o.replace("_", "").replace(".", "").isalnum()
                for o in outs.values())
-    assert design_command("5", DIE, SILICON, point).endswith("--out atlas_mems_die_6.toml")
+    assert design_command("5", DIE, SILICON, point).endswith("--out die_6.toml")
+
+
+def test_the_names_an_atlas_writes_are_short_distinct_design_names():
+    # atlas_monolithic_comb_ti_6al_4v_annealed_0 (42 characters) ran its drawings' number
+    # past the title block; a project's point folder added the project's name to it
+    import re
+
+    from tactcad.studies.design_atlas import (GRADE_KEYS, beside_folder_name,
+                                              command_beside_project, design_command,
+                                              written_name)
+    from tactcad.vocabulary.schema import NAME_PATTERN
+
+    assert written_name(COMB, "Ti-6Al-4V-annealed", 0) == "comb_ti64_0.toml"
+    grades = [*GRADE_KEYS, "Ti-6Al-4V-annealed-ELI", "Ti-6Al-4V annealed", "ti64", "X"]
+    names = {(g, p): written_name(COMB, g, p).removesuffix(".toml")
+             for g in grades for p in (0, 7, 99_999)}
+    names[DIE, 99_999] = written_name(DIE, SILICON, 99_999).removesuffix(".toml")
+    assert len(set(names.values())) == len(names)
+    assert all(re.fullmatch(NAME_PATTERN, n) and len(n) <= 27 for n in names.values())
+    for project in ("lab", "a" * 64, "lab_" * 16):
+        for n in names.values():
+            folder = beside_folder_name(project, n)
+            assert re.fullmatch(NAME_PATTERN, folder) and folder.endswith("_" + n)
+            assert len(folder) <= 64 and folder.startswith(project[:3])
+    point = {"point": 99_999, "kr_over_km": 8.0, "kobj_lo_N_per_mm": 0.5,
+             "kobj_hi_N_per_mm": 5.0, "full_scale_force_N": 0.1, "columns": 4}
+    die_line = command_beside_project(design_command("5", DIE, SILICON, point), "a" * 64)
+    assert die_line.endswith(" --out ../" + "a" * 22 + "_die_99999")  # a die's 32 characters
+    comb_line = command_beside_project(design_command("5", COMB, "7075-T6", point), "a" * 64)
+    assert comb_line.endswith(" --out ../" + "a" * 46 + "_comb_al7075_99999")
 
 
 @pytest.mark.slow  # twelve comb searches, half of them weighing every candidate

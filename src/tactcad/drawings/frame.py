@@ -90,32 +90,94 @@ def sheet_frame(sh: Sheet) -> None:
         sh.line("frame", p, q, "frame")
 
 
+#: Smallest value height a title block sets (mm): ISO 3098's smallest nominal height.
+MIN_VALUE_MM = 1.8
+#: Step a value too wide for its cell is set smaller by (mm).
+VALUE_STEP_MM = 0.25
+#: Characters a value may be broken after onto a second line, in order of preference: a
+#: space, then a name's separators.
+BREAKS = (" ", "_-.")
+
+
 def title_cells(sh: Sheet, x0: float, y0: float, rh: float, cells: list[tuple]) -> None:
     """Title-block cells (ISO 7200): each ``(row, x offset, width, label,
     value, id, value height)`` in paper mm from the block's corner
-    ``(x0, y0)``, rows ``rh`` high; a value too wide for its cell is set smaller, down to
-    1.8 mm, and beyond that shortened at a word with an ellipsis (the drawing's notes give a
-    process in full)."""
+    ``(x0, y0)``, rows ``rh`` high. A value too wide for its cell is set smaller, down to
+    :data:`MIN_VALUE_MM`, then on two lines (its second text's id ``<id>-2``), and beyond
+    that its middle is left out for an ellipsis (:func:`value_lines`; the sheet's SVG title
+    and its Design cell keep the design's name whole). Widths are
+    :func:`~tactcad.drawings.sheet.text_width`'s, the measure ``tactcad check`` takes."""
     for row, dx, w, label, value, id, vh in cells:
         x, y = x0 + dx, y0 + row * rh
         sh.rect("title-block", x, y, w, rh, "table")
         sh.text("title-block", (x + 1.2, y + 2.4), label, 1.6)
         if value:
-            room = 0.9 * (w - 3)
-            while text_width(value, vh) > room and vh > 1.8:
-                vh -= 0.25
-            sh.text("title-block", (x + 1.5, y + rh - 1.6), fitted_text(value, vh, room), vh, id=id)
+            h, lines = value_lines(value, vh, 0.9 * (w - 3))
+            base = y + rh - 1.6
+            baselines = [base - (len(lines) - 1 - k) * (1.25 * h + 0.3) for k in range(len(lines))]
+            for k, (line, at) in enumerate(zip(lines, baselines)):
+                sh.text("title-block", (x + 1.5, at), line, h, id=id if k == 0 else f"{id}-2")
 
 
-def fitted_text(value: str, height_mm: float, room_mm: float) -> str:
-    """``value`` as set at ``height_mm`` in ``room_mm`` of paper: whole when it fits, else
-    cut after the last word that leaves room for an ellipsis."""
-    if text_width(value, height_mm) <= room_mm:
-        return value
-    words = value.split(" ")
-    while len(words) > 1 and text_width(" ".join(words) + " …", height_mm) > room_mm:
-        words.pop()
-    return " ".join(words).rstrip(",;:") + " …"
+def value_lines(value: str, height_mm: float, room_mm: float) -> tuple[float, list[str]]:
+    """How a title-block value is set in ``room_mm`` of paper: on one line at the largest
+    height down to :data:`MIN_VALUE_MM` (steps of :data:`VALUE_STEP_MM`) that fits, else
+    on two lines at :data:`MIN_VALUE_MM` (:func:`two_lines`), else as
+    :func:`abbreviated_lines`.
+
+    Args:
+        value: the text. height_mm: its nominal height when it fits (mm).
+        room_mm: the width a line may take (mm).
+
+    Returns:
+        (height mm, one or two lines).
+    """
+    h = height_mm
+    while text_width(value, h) > room_mm and h > MIN_VALUE_MM:
+        h = max(MIN_VALUE_MM, h - VALUE_STEP_MM)
+    if text_width(value, h) <= room_mm:
+        return h, [value]
+    return MIN_VALUE_MM, (two_lines(value, MIN_VALUE_MM, room_mm)
+                          or abbreviated_lines(value, MIN_VALUE_MM, room_mm))
+
+
+def two_lines(value: str, height_mm: float, room_mm: float) -> list[str] | None:
+    """``value`` broken onto two lines no wider than ``room_mm`` at ``height_mm`` (mm):
+    after a space where one fits, else after a ``_``, ``-`` or ``.`` (:data:`BREAKS`), else
+    between any two characters; of the breaks that fit, the one whose longer line is
+    shortest.
+
+    Returns:
+        The two lines (a space at the break dropped), or None when no break fits.
+    """
+    def split(k: int) -> list[str]:
+        return [value[:k].rstrip(" "), value[k:].lstrip(" ")]
+
+    tiers = [[k for k in range(1, len(value)) if value[k - 1] in chars] for chars in BREAKS]
+    for candidates in (*tiers, range(1, len(value))):
+        fits = [(max(text_width(t, height_mm) for t in split(k)), k) for k in candidates
+                if all(text_width(t, height_mm) <= room_mm for t in split(k))]
+        if fits:
+            return split(min(fits)[1])
+    return None
+
+
+def abbreviated_lines(value: str, height_mm: float, room_mm: float) -> list[str]:
+    """``value`` on two lines of ``room_mm`` at ``height_mm`` (mm) with its middle left
+    out: the longest start that fits, then an ellipsis and the longest end that fits (a
+    drawing number keeps its design's first characters and its part's name).
+
+    Returns:
+        The two lines.
+    """
+    head = value
+    while len(head) > 1 and text_width(head, height_mm) > room_mm:
+        head = head[:-1]
+    rest = value[len(head):]
+    tail = rest
+    while len(tail) > 1 and text_width("…" + tail, height_mm) > room_mm:
+        tail = tail[1:]
+    return [head, "…" + tail]
 
 
 def projection_symbol(sh: Sheet, px: float, py: float) -> None:

@@ -482,32 +482,66 @@ def design_command(jaw: str, product: str, material: str, point: Mapping[str, An
     return " ".join(words + [f"--out {written_name(product, material, point['point'])}"])
 
 
+#: Each product's word in the files its commands write.
+PRODUCT_KEYS = {COMB: "comb", DIE: "die"}
+#: The shipped comb grades' short words in those names (letters and digits).
+GRADE_KEYS = {"6061-T6": "al6061", "7075-T6": "al7075", "17-4PH-H900": "174ph",
+              "Ti-6Al-4V-annealed": "ti64", "CuBe-C17200-TF00": "cube"}
+#: Most characters of a design's name (the name rule) and of a die's (its cell name).
+DESIGN_NAME_CHARS, DIE_NAME_CHARS = 64, 32
+#: Most characters a grade's word takes in a written name.
+GRADE_KEY_CHARS = 10
+
+
+def grade_key(material: str) -> str:
+    """A comb grade's short word in the names an atlas writes: :data:`GRADE_KEYS`' for a
+    shipped grade; for another, its letters and digits in lower case when they are at most
+    :data:`GRADE_KEY_CHARS` and no shipped grade's word, else their first six and four hex
+    digits of the grade's sha256 (two grades never share a word).
+
+    Args:
+        material: the grade as the material library names it (``Ti-6Al-4V-annealed``).
+
+    Returns:
+        Lower-case letters and digits, 1 ... :data:`GRADE_KEY_CHARS` characters.
+    """
+    import hashlib
+    import re
+
+    if material in GRADE_KEYS:
+        return GRADE_KEYS[material]
+    word = re.sub(r"[^a-z0-9]+", "", material.lower())
+    if word and len(word) <= GRADE_KEY_CHARS and word not in GRADE_KEYS.values():
+        return word
+    return word[:6] + hashlib.sha256(material.encode("utf-8")).hexdigest()[:4]
+
+
 def written_name(product: str, material: str, point: int) -> str:
     """The design file a point's command writes: one name per product, material and point,
-    so the commands of one point's materials can all be pasted in one folder.
+    so the commands of one point's materials can all be pasted in one folder; short, so the
+    design's name (the file's stem) leaves its drawings' title blocks room.
 
     Args:
         product: :data:`COMB` or :data:`DIE`. material: the comb's grade (the die's is
             :data:`SILICON`, left out of the name). point: the point's index.
 
     Returns:
-        ``atlas_<product>[_<grade>]_<point>.toml``, in letters, digits and underscores.
+        ``<product>[_<grade>]_<point>.toml`` (``comb_ti64_0.toml``, ``die_6.toml``: the
+        words of :data:`PRODUCT_KEYS` and :func:`grade_key`), at most 27 characters of
+        letters, digits and underscores.
     """
-    import re
-
-    parts = [product] + ([] if product == DIE else [material]) + [str(point)]
-    return "atlas_" + "_".join(re.sub(r"[^a-z0-9]+", "_", p.lower()).strip("_")
-                               for p in parts) + ".toml"
+    parts = [PRODUCT_KEYS[product]] + ([] if product == DIE else [grade_key(material)])
+    return "_".join(parts + [str(point)]) + ".toml"
 
 
 def command_beside_project(command: str, project: str, jaw: str = "",
                            jaw_here: str = "", beside: str = "..") -> str:
     """A point's design command writing a new project folder beside a sensor project's
-    (``<beside>/<project>_atlas_...``), since a second design file in the project's folder
+    (``<beside>/<project>_comb_...``), since a second design file in the project's folder
     would leave every later command there refused.
 
     Args:
-        command: a line of :func:`design_command` (ending ``--out atlas_....toml``).
+        command: a line of :func:`design_command` (ending ``--out comb_....toml``).
         project: the project folder's name.
         jaw: the line's ``--jaw``; jaw_here: the same jaw named from the folder the line is
             pasted in (a jaw file's path); either empty: the line's ``--jaw`` is kept.
@@ -515,7 +549,8 @@ def command_beside_project(command: str, project: str, jaw: str = "",
             pasted in (``..`` from the project's own folder).
 
     Returns:
-        The line with its ``--out`` a folder beside the project, named after it and the point.
+        The line with its ``--out`` a folder beside the project, named after it and the point
+        (:func:`beside_folder_name`, within a die's 32 characters for a die's line).
     """
     import posixpath
     import shlex
@@ -524,9 +559,27 @@ def command_beside_project(command: str, project: str, jaw: str = "",
     given = f"tactcad design --jaw {shlex.quote(jaw)} "
     if jaw and jaw_here and head.startswith(given):
         head = f"tactcad design --jaw {shlex.quote(jaw_here)} " + head[len(given):]
-    folder = f"{project}_{name.removesuffix('.toml')}"
+    most = DIE_NAME_CHARS if f" --construction {DIE} " in f"{head} " else DESIGN_NAME_CHARS
+    folder = beside_folder_name(project, name.removesuffix(".toml"), most)
     out = folder if beside in ("", ".") else posixpath.join(beside, folder)
     return f"{head} --out {shlex.quote(out)}"
+
+
+def beside_folder_name(project: str, point_name: str, most: int = DESIGN_NAME_CHARS) -> str:
+    """The project folder a point's command writes beside a sensor project's:
+    ``<project>_<point name>``, the project's part cut so the whole is at most ``most``
+    characters (design names the project after its folder: a design name takes 64, a die's
+    cell name 32; the point's part keeps the lines apart).
+
+    Args:
+        project: the project folder's name. point_name: :func:`written_name`'s stem.
+        most: the most characters of the name.
+
+    Returns:
+        The folder's name.
+    """
+    head = project[:max(0, most - len(point_name) - 1)].rstrip("_.-")
+    return f"{head}_{point_name}" if head else point_name
 
 
 def evaluate_batch(atlas: JawAtlas, points: Sequence[Mapping[str, Any]]) -> list[dict]:
