@@ -47,8 +47,10 @@ def test_a_folders_design_as_the_base_is_said_first_and_named_in_the_file(tmp_pa
     err = capsys.readouterr().err
     assert "this folder's design" not in err
     text = (tmp_path / "b.toml").read_text(encoding="utf-8")
-    assert "# Base design: macro_array, the shipped example, named by --design." in text
-    assert "Kept from the base design (macro_array, the shipped example), where" in text
+    assert "# Base design: the shipped default example, named by --design." in text
+    assert "Kept from the base design (the shipped default example), where" in text
+    # the paper's design is not named in a lab's file (but by the command it was made with)
+    assert "macro_array" not in text.split("\n", 1)[1]
 
 
 @pytest.mark.slow  # a design and a refusal, each searching the layouts

@@ -465,7 +465,7 @@ def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vou
     assert "contact face" not in why["element.tip_height_mm"]  # the base's claim, not made
     # says that it left the base's values out, without repeating them (the paper's here)
     assert why["element.tip_height_mm"].startswith(
-        "Kept from the base design (macro_array, the shipped example), whose reason quotes "
+        "Kept from the base design (the shipped default example), whose reason quotes "
         "values this design does not have")
     assert not any(re.search(r"\b2 x 3 mm|\b10 mm|\b8 mm", text) for text in why.values()
                    if text.startswith("Kept from the base design"))

@@ -1591,8 +1591,11 @@ def shipped_or_file(given: str) -> Path:
 
 
 def base_label(design: Path) -> str:
-    """The base design as the written file names it: a shipped example by its name and so
-    ("macro_array, the shipped example"), any other by its file's name ("paste264.toml").
+    """The base design as the written file names it: the shipped default example as such
+    ("the shipped default example": a lab's design file never names the paper's design,
+    :func:`tactcad.studies.inverse_design.neutral_assumptions`), another shipped example by
+    its name ("ti_array_2x3, the shipped example"), any other by its file's name
+    ("paste264.toml").
 
     Args:
         design: the base design file.
@@ -1600,8 +1603,11 @@ def base_label(design: Path) -> str:
     Returns:
         The words naming it.
     """
+    from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.project_folder import examples
 
+    if design.resolve() == DEFAULT_DESIGN.resolve():
+        return "the shipped default example"
     for name, path in examples().items():
         if path.resolve() == design.resolve():
             return f"{name}, the shipped example"

@@ -1039,7 +1039,7 @@ _BASE_VALUE = re.compile(r" instead of the base design's ([^;]+);")
 
 def with_base_named(data: Mapping[str, Any], label: str) -> dict[str, Any]:
     """``data`` with every reason that points to the base design naming it (``label``,
-    e.g. "macro_array, the shipped example" or "paste264.toml"): "Kept from the base design
+    e.g. "the shipped default example" or "paste264.toml"): "Kept from the base design
     (paste264.toml), where it is an assumption.", "4 instead of 3 in the base design
     (paste264.toml)", so a written design says what it was made from.
 
