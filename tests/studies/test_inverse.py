@@ -313,7 +313,8 @@ def test_cli_refuses_impossible_targets(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     assert main(["design", "--kr-over-km", "1000", "--kobj-range", "2", "10",
                  "--full-scale-force", "0.1", "--verify", "none", "--out", "x.toml"]) == 2
-    err = capsys.readouterr().err
+    base, err = capsys.readouterr().err.split("\n", 1)  # the base, said before the search
+    assert base.startswith("tactcad: design: starts from the shipped example macro_array")
     assert err.startswith("tactcad: error: the targets cannot be met: --kr-over-km = 1000")
     assert "K_m within the arm range" in err  # the limit, not the field the search sets
     assert not (tmp_path / "x.toml").exists()
@@ -463,8 +464,9 @@ def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vou
     why = read_toml(tmp_path / "face.toml", "design")["assumptions"]
     assert "contact face" not in why["element.tip_height_mm"]  # the base's claim, not made
     # says that it left the base's values out, without repeating them (the paper's here)
-    assert why["element.tip_height_mm"].startswith("Kept from the base design, whose reason "
-                                                   "quotes values this design does not have")
+    assert why["element.tip_height_mm"].startswith(
+        "Kept from the base design (the shipped default example), whose reason quotes "
+        "values this design does not have")
     assert not any(re.search(r"\b2 x 3 mm|\b10 mm|\b8 mm", text) for text in why.values()
                    if text.startswith("Kept from the base design"))
     assert why["clamp.bolt_spacing_mm"] == "Two bolts 6 mm apart centred on the clamped base."

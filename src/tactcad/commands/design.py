@@ -251,7 +251,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "top of the ladder, about 1.5 min an element on two cores; not with "
                         "--jaw, whose design the checks that need no CAD kernel check: run "
                         "tactcad verify on it)")
-    add_design_arg(p, design_word=False)
+    add_design_arg(p, design_help="base design file (TOML), or a shipped example's name "
+                   "(--design macro_array: the same base in any folder); default: the one "
+                   "design file of the working folder, else the shipped example macro_array; "
+                   "the base is named on stderr before the search and in the file written",
+                   design_word=False)
     add_cache_args(p, ".tactcad-cache in the folder the design is written to, where the "
                       "project's commands find it; for a new --out DIR, the folder DIR is "
                       "made in, copied into DIR with the project, so a refused design "
@@ -404,6 +408,10 @@ def _run(args: argparse.Namespace) -> int:
     data, design = start_from_args(args, name=path.stem.replace("-", "_") or "inverse_design",
                                    out=path)
     check_columns(int(data["array"]["columns"]), stacked, "a stacked array", STACKED_COLUMNS_WHY)
+    if not (args.json or args.quiet):  # the base, said before the search that starts from it
+        from tactcad.commands.notices import print_heads
+
+        print_heads()
     kwargs = {}
     if args.footprint is not None:
         from tactcad.assembly.inventory import array_envelope_mm
@@ -414,9 +422,13 @@ def _run(args: argparse.Namespace) -> int:
                                  name=data["design"]["name"], **kwargs)
     except DesignError as exc:
         raise as_options(exc, args, design) from None
-    if args.kobj_accuracy is not None:
-        from dataclasses import replace
+    from dataclasses import replace
 
+    from tactcad.studies.inverse_design import with_base_named
+
+    label = base_label(design)
+    result = replace(result, data=with_base_named(result.data, label))
+    if args.kobj_accuracy is not None:
         result = with_kobj_accuracy(result, args.kobj_accuracy)
         # judged on the rigs the written project calibrates on, as verify reads the file
         result = replace(result, plan=written_plan(result.data, path))
@@ -434,6 +446,7 @@ def _run(args: argparse.Namespace) -> int:
 
     header = (f"# Written by tactcad {VERSION}: "
               f"`tactcad design {' '.join(design_options(args))}`.\n"
+              f"{base_comment(label, bool(args.design), label != design.name)}"
               f"# Units: mm, N, MPa. Reasons for the chosen values are under [assumptions].\n\n")
     text = design_text(header, result.data)
     if folder is None:  # the rigs a design file alone takes are those beside it
@@ -1498,35 +1511,107 @@ def fixed_fields(args: argparse.Namespace) -> set[str]:
 def base_design(out: Path | None) -> Path:
     """The design a search without ``--design`` starts from, named on stderr: the working
     folder's design, or the shipped example where the folder has none, its design is
-    ``out``, the file this run replaces (``--force``), or another product's (a die's)."""
-    from tactcad.commands import announce_shipped_example
+    ``out``, the file this run replaces (``--force``), or another product's (a die's).
+    A folder's design is picked as every command picks it (docs/reference/cli.md), so the
+    same command gives other hardware in another folder: the line says which ``--design``
+    gives either answer in any folder (:func:`shipped_or_file` reads an example's name)."""
     from tactcad.commands.notices import announce
     from tactcad.design.array_plan import DEFAULT_DESIGN
     from tactcad.project_folder import default_design, product_of, unreadable_tomls
 
+    shipped = DEFAULT_DESIGN.stem
     # a design needs no file of the folder: an unreadable *.toml is passed over, named
     found = default_design(refuse_unreadable=False)  # the folder scanned once
     if found != DEFAULT_DESIGN and out is not None and found.resolve() == out.resolve():
-        announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
+        announce(f"design: starts from the shipped example {shipped}, not "
                  f"{found.name}, the file this run replaces; --design names a base")
         return DEFAULT_DESIGN
     if found != DEFAULT_DESIGN and not product_of(found).is_default:
         # a die's design has no stack to search: the array starts from the shipped one
-        announce(f"design: starts from the shipped example {DEFAULT_DESIGN.stem}, not "
+        announce(f"design: starts from the shipped example {shipped}, not "
                  f"{found.name}, this folder's {product_of(found).name} design (a stacked "
                  "array is not made from it); --design names a base")
         return DEFAULT_DESIGN
     if found != DEFAULT_DESIGN:
-        announce(f"design: starts from {found.name}, this folder's design; --design names "
-                 "another base")
+        announce(f"design: starts from {found.name}, this folder's design, picked because no "
+                 f"--design was given: the same command in another folder starts from another "
+                 f"base and gives other hardware; --design {shlex.quote(found.name)} keeps this "
+                 f"base, --design {shipped} starts from the shipped example (the base of a "
+                 f"folder with no design file), in any folder")
         return found
-    announce_shipped_example()
+    announce(f"design: starts from the shipped example {shipped} (the paper's 2 x 5 array): "
+             f"no design file in this folder and no --design; a folder holding a design file "
+             f"starts from that one, --design {shipped} from this one in any folder; "
+             f"`tactcad new NAME` makes a project of your own")
     passed = unreadable_tomls(Path("."))
     if passed:
         announce("design: passed over " + ", ".join(
             f"{Path(str(e.value)).name} (not {e.allowed}: {e.why})" for e in passed)
             + ", no design file can be read from them; --design FILE names a base")
     return DEFAULT_DESIGN
+
+
+def base_comment(label: str, named: bool, shipped: bool) -> str:
+    """The written file's header line naming its base design (``label``, :func:`base_label`)
+    and, where no ``--design`` named it, how the folder picked it.
+
+    Args:
+        label: the words naming the base. named: ``--design`` named it. shipped: it is a
+            shipped example.
+
+    Returns:
+        The comment line, newline included.
+    """
+    if named:
+        how = "named by --design"
+    elif shipped:
+        how = "picked without --design, the working folder holding no other array design"
+    else:
+        how = "picked without --design, the working folder's design file"
+    return f"# Base design: {label}, {how}.\n"
+
+
+def shipped_or_file(given: str) -> Path:
+    """The base design ``--design`` names: the file (or folder's design) given, else, where
+    no such file is, the shipped example of that name (``--design macro_array``), so a base
+    is named the same way in any folder.
+
+    Args:
+        given: ``--design``'s value.
+
+    Returns:
+        The design file's path (not checked to exist: reading it names a missing file).
+    """
+    from tactcad.project_folder import examples
+
+    path = Path(given)
+    if path.exists():
+        return path
+    return examples().get(given, path)
+
+
+def base_label(design: Path) -> str:
+    """The base design as the written file names it: the shipped default example as such
+    ("the shipped default example": a lab's design file never names the paper's design,
+    :func:`tactcad.studies.inverse_design.neutral_assumptions`), another shipped example by
+    its name ("ti_array_2x3, the shipped example"), any other by its file's name
+    ("paste264.toml").
+
+    Args:
+        design: the base design file.
+
+    Returns:
+        The words naming it.
+    """
+    from tactcad.design.array_plan import DEFAULT_DESIGN
+    from tactcad.project_folder import examples
+
+    if design.resolve() == DEFAULT_DESIGN.resolve():
+        return "the shipped default example"
+    for name, path in examples().items():
+        if path.resolve() == design.resolve():
+            return f"{name}, the shipped example"
+    return design.name
 
 
 def start_from_args(args: argparse.Namespace, name: str, out: Path | None = None
@@ -1555,7 +1640,7 @@ def start_from_args(args: argparse.Namespace, name: str, out: Path | None = None
             raise as_options(DesignErrors(own or problems.errors), args, design)
         return model
 
-    design = Path(args.design) if args.design else base_design(out)
+    design = shipped_or_file(args.design) if args.design else base_design(out)
     raw = with_overrides(read_toml(design, "design file"), set_keys(args))
     refuse_another_products_base(raw, design)
     base = check(raw)  # the base's own tables first: the start is made from them
@@ -1859,6 +1944,9 @@ def design_report(result, verify: str, progress=None, margins: list[dict] | None
             "force_resolution_N": {"reference": df_ref, "measuring": df_meas},
             "max_full_scale_force_N": result.max_full_scale_force_N,
             "max_full_scale_force_basis": MAX_FORCE_BASIS,
+            "max_full_scale_force_layout": getattr(result, "layout_words", ""),
+            "across_layouts_force_N": getattr(result, "across_layouts_force_N", None),
+            "across_layouts_layout": getattr(result, "across_layouts_layout", ""),
             "binding_limits": list(result.binding_limits),
             "web_rule": WEB_RULE,
             "margins": design_margins(plan) if margins is None else margins,
@@ -2003,14 +2091,37 @@ def print_report(r: dict) -> None:
         print(line)
     if r.get("rigs") and not r["rigs"]["fits"]:
         print(rigs_misfit_line(r["rigs"]))
+    print(largest_force_line(r))
+    print(f"wrote {shown_path(r['out'])}")
+
+
+def largest_force_line(r: dict) -> str:
+    """The report's largest feasible full-scale force: across the layouts the search tried,
+    the figure its refusal names (``across_layouts_force_N``), and this design's layout's own
+    where another layout carries more; rounded down, so the force printed first designs
+    when pasted.
+
+    Args:
+        r: :func:`design_report`'s dict.
+
+    Returns:
+        The line.
+    """
     from tactcad.vocabulary.rounding import round_down
 
-    # rounded down: the force printed is one to paste, so it must design
-    print(f"largest feasible full-scale force for these stiffness targets: "
-          f"{round_down(r['max_full_scale_force_N'], 4):.4g} N, bound by "
-          + "; ".join(r["binding_limits"])
-          + f" ({MAX_FORCE_BASIS})")
-    print(f"wrote {shown_path(r['out'])}")
+    own = round_down(r["max_full_scale_force_N"], 4)
+    bound = "; ".join(r["binding_limits"]) + f" ({MAX_FORCE_BASIS})"
+    across, layout = r.get("across_layouts_force_N"), r.get("max_full_scale_force_layout")
+    head = "largest feasible full-scale force for these stiffness targets: "
+    if across is None or not layout:  # one layout's design (a footprint): its own figure
+        where = f" for this layout ({layout})" if layout else ""
+        return f"{head}{own:.4g} N{where}, bound by {bound}"
+    if r["across_layouts_layout"] == layout:
+        return (f"{head}{own:.4g} N across the layouts searched, at this design's ({layout}), "
+                f"bound by {bound}")
+    return (f"{head}{across:g} N across the layouts searched, at {r['across_layouts_layout']} "
+            f"(to paste: --full-scale-force {across:g}); this design's layout ({layout}) "
+            f"carries {own:.4g} N, bound by {bound}")
 
 
 def rigs_beside(data: dict, path: Path, out: str) -> dict | None:

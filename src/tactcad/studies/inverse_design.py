@@ -967,6 +967,14 @@ class InverseDesign:
     layout_changes: tuple[tuple[str, Any, Any], ...] = ()
     max_full_scale_force_N: float = 0.0
     binding_limits: tuple[str, ...] = ()
+    #: The largest full-scale force (N) the layout search designs at, across the layouts it
+    #: searched (the figure its refusal names), and the layout in words; None when not
+    #: sought (a single layout's design, or a footprint): ``max_full_scale_force_N`` is
+    #: this design's layout's alone.
+    across_layouts_force_N: float | None = None
+    across_layouts_layout: str = ""
+    #: This design's layout in words ("sheet 4 mm, pitch 4.2 mm, ..."; "" when not searched).
+    layout_words: str = ""
     #: The K_obj factor the units see through the tissue coupling (1: no tissue). It differs
     #: from ``targets.kobj_seen_factor`` (the centring used) when eq. 2's centring was kept.
     coupling_seen_factor: float = 1.0
@@ -1021,7 +1029,34 @@ def _mentions_paper(text: str) -> bool:
 
 #: The pointer a reason carried from an earlier base design starts with
 #: (:func:`neutral_assumptions`); its own words, if any, follow the colon.
-_KEPT_FROM = re.compile(r"^Kept from the base design[^,:]*, where it is an assumption[.:]\s*")
+_KEPT_FROM = re.compile(r"^Kept from the base design(?: \([^)]*\)|[^,:]*), where it is an "
+                        r"assumption[.:]\s*")
+#: A reason's pointer to the base design, named or not (:func:`with_base_named`).
+_BASE_POINTER = re.compile(r"^Kept from the base design(?: \([^)]*\)| [^,:()]+)?(?=[,:])")
+#: A layout reason's base value (:func:`tactcad.studies.layout_search.searched_design`).
+_BASE_VALUE = re.compile(r" instead of the base design's ([^;]+);")
+
+
+def with_base_named(data: Mapping[str, Any], label: str) -> dict[str, Any]:
+    """``data`` with every reason that points to the base design naming it (``label``,
+    e.g. "the shipped default example" or "paste264.toml"): "Kept from the base design
+    (paste264.toml), where it is an assumption.", "4 instead of 3 in the base design
+    (paste264.toml)", so a written design says what it was made from.
+
+    Args:
+        data: a new design's raw tables (not modified).
+        label: the words naming the base design.
+
+    Returns:
+        The tables with their ``[assumptions]`` so worded.
+    """
+    out = dict(data)
+    named = f"the base design ({label})"
+    out["assumptions"] = {
+        key: _BASE_VALUE.sub(lambda m: f" instead of {m.group(1)} in {named};",
+                             _BASE_POINTER.sub(f"Kept from {named}", str(why)))
+        for key, why in dict(data.get("assumptions", {})).items()}
+    return out
 
 
 def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, str]:

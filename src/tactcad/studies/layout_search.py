@@ -328,7 +328,13 @@ def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequenc
                          correction)
     if found is not None:
         d, layout = found
-        return _with_reasons(d, start, layout, footprint_mm)
+        d = _with_reasons(d, start, layout, footprint_mm)
+        across = None if footprint_mm is not None else across_layouts_force(
+            data, targets, seen, start, layout, validate, name, correction)
+        return replace(d, layout_words=layout.words(), **({} if across is None else dict(
+            across_layouts_force_N=max(across[0], d.max_full_scale_force_N),
+            across_layouts_layout=(across[1] if across[0] > d.max_full_scale_force_N
+                                   else layout).words())))
     raise refusal(data, targets, start, seen, fixed, footprint_mm, envelope_of, validate, name,
                   correction)
 
@@ -597,6 +603,45 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
                                                        better_than_N=best_m.largest_force_N)
                              if a.field != "sheet.thickness_mm"]
     return _error(errors, alternatives, targets)
+
+
+def across_layouts_force(data: Mapping[str, Any], targets: Targets, seen: Attempts,
+                         start: FreeLayout, chosen: FreeLayout, validate: Validate | None,
+                         name: str, correction
+                         ) -> tuple[float, FreeLayout]:
+    """The largest full-scale force (N) the search designs at across the layouts it searches
+    and its layout, as its refusal would name it (:func:`refusal`: the frontier sought from
+    the layout whose elements carry most, :func:`searched_force`), for a search that
+    designed on ``chosen``: a lab reading a design's largest force must not miss a larger
+    one another sheet gives. Where ``chosen``'s elements carry most, it is ``chosen``'s
+    (force 0 here: the design's own figure is the one to state), at the cost of the web
+    searches of the other layouts alone.
+
+    Args:
+        data: the start's raw tables. targets: the asked targets. seen: the asked search's
+            attempts (its layouts' mechanics are reused). start: the start's layout (of
+            layouts alike, the nearest it is taken). chosen: the layout designed on.
+        validate, name, correction: as :func:`searched_design`.
+
+    Returns:
+        (force N, its layout); (0, ``chosen``) where no other layout carries more.
+    """
+    with warnings.catch_warnings(), evaluations_kept():
+        warnings.simplefilter("ignore")
+        mechs = [(c, _mechanics(seen, data, c, targets, correction)) for c in seen.stack_fit]
+        stiff = [(c, m) for c, m in mechs if m is not None and m.largest_force_N > 0]
+        own = _mechanics(seen, data, chosen, targets, correction)
+        if not stiff:
+            return 0.0, chosen
+        best_c, best_m = max(stiff, key=lambda cm: (cm[1].largest_force_N,
+                                                    -cm[0].distance(start)))
+        if own is not None and best_m.largest_force_N <= own.largest_force_N:
+            return 0.0, chosen
+        f_best = largest_feasible_force(with_layout(data, best_c), replace(
+            targets, full_scale_force_N=MAX_FULL_SCALE_FORCE_N), correction)
+        offer = None if f_best <= 0 else searched_force(data, targets, seen, f_best, validate,
+                                                         name, correction)
+    return (0.0, chosen) if offer is None else offer
 
 
 #: A refusal's offered force: the search is asked again at forces this factor apart,
