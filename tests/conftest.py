@@ -367,6 +367,7 @@ BROWSER_TESTS = {
     "export/test_review_page.py::test_a_page_whose_watch_stopped_asks_less_and_less_often",
     "export/test_review_page.py::test_check_results_join_the_page",
     "export/test_review_page.py::test_an_undecided_requirement_shows_as_undecided_not_pass",
+    "export/test_review_page.py::test_a_requirement_reported_not_judged_shows_as_info_in_the_checks",
     "export/test_review_budget.py::test_the_exported_page_shows_the_budget_table",
     "export/test_atlas_view.py::test_the_page_draws_the_atlas_and_a_click_shows_the_point",
 }

@@ -111,7 +111,7 @@ def test_an_undecided_requirement_is_its_own_status_in_the_line_the_counts_and_j
              CheckResult("requirement", "footprint_mm", False, "fail: margin -3 %")]
     assert [r.line().split()[0] for r in found] == ["UNDECIDED", "PASS", "FAIL"]
     counts = status_counts(found)
-    assert counts == {"passed": 1, "undecided": 1, "failed": 1}
+    assert counts == {"passed": 1, "undecided": 1, "failed": 1, "info": 0}
     assert counts_text(counts) == "1 passed, 1 undecided, 1 failed"
     assert counts_text(status_counts(found[1:])) == "1 passed, 1 failed"
     root = ET.fromstring(junit_report([("requirements", found)], PARTS))

@@ -75,7 +75,8 @@ def test_data_names_scenes_and_sheets_by_sha256_and_carries_the_checks():
     data = doc["data"]
     assert data["manifest"]["design"]["name"] == "</script>@@DATA@@"
     assert {k: v for k, v in doc["checks"].items() if k != "groups"} == {
-        "design_sha256": "ab" * 32, "passed": 0, "failed": 0, "undecided": 0, "checks": []}
+        "design_sha256": "ab" * 32, "passed": 0, "failed": 0, "undecided": 0, "info": 0,
+        "checks": []}
     assert data["scene_sha256"] == {"s": _sha(b"glb-s"), "t": _sha(b"glb-t")}
     assert "svg_base64" not in json.dumps(data)  # the sheets' bytes are fetched by sha256
     assert state.response("/scene/" + _sha(b"glb-t")) == (b"glb-t", "model/gltf-binary")

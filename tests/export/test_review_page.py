@@ -320,6 +320,31 @@ def test_an_undecided_requirement_shows_as_undecided_not_pass(exported, browser,
         (out / "review/checks.js").unlink()
 
 
+@pytest.mark.slow
+def test_a_requirement_reported_not_judged_shows_as_info_in_the_checks(exported, browser, plan):
+    """A requirement the lab never stated: INFO in the checks tab, counted apart from the
+    passed (it showed PASS and counted among them)."""
+    from tactcad.checks.check_result import CheckResult
+    from tactcad.checks.review_browser import wait_first_frame
+
+    out, _ = exported
+    write_checks_script(out, plan.design_hash, [("requirements", [
+        CheckResult("requirement", "k_tolerance_rel", True,
+                    "info: not stated, not judged: predicted 0.1285", info=True),
+        CheckResult("requirement", "kr_over_km", True, "pass: margin +2.2 %")])])
+    try:
+        with browser() as page:
+            page.goto((out / REVIEW_PAGE).resolve().as_uri())
+            wait_first_frame(page)
+            rows = page.locator("#checks-body tr").all_inner_texts()
+            text = page.locator("#checks-body").inner_text()
+            assert "1 passed, 0 failed, 1 info" in text
+            band = next(r for r in rows if "k_tolerance_rel" in r)
+            assert band.split("\t")[0] == "INFO"
+    finally:
+        (out / "review/checks.js").unlink()
+
+
 def test_requirements_of_the_manifest_show_as_the_verification_matrix():
     record = {"values": {"full_scale_force_N": 0.1},
               "closed_form_matrix": [{"requirement": "full_scale_force_N", "target": 0.1,

@@ -389,10 +389,12 @@ def test_a_designs_margins_clear_the_closed_forms_error(plan):
                   (FEASIBLE, {})):
         d = design_for_targets(plan, t, **kw)
         records = verification_matrix(d.plan, "closed-form")
+        # the K band the design never writes is reported, not judged (info)
         assert {r["requirement"]: r["verdict"] for r in records} == \
-            {r["requirement"]: "pass" for r in records}
+            {r["requirement"]: "info" if r["requirement"].startswith("k_tolerance_rel")
+             else "pass" for r in records}
         band = next(r for r in records if r["requirement"] == "k_tolerance_rel")
-        assert band["margin_rel"] >= band["error_estimate_rel"] > 0
+        assert band["reference_value"] / band["predicted"] - 1.0 >= band["error_estimate_rel"] > 0
 
 
 def test_at_the_largest_force_the_gauge_limits_clear_the_closed_forms_strain_error(plan):
@@ -662,8 +664,12 @@ def test_the_requirements_a_design_derives_say_so_and_verify_does_not_call_them_
     assert req.stated == {"full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km"}
     assert derived <= req.written  # still judged as the file gives them
     assert req.kobj_resolution_rel == written["kobj_resolution_rel"]
-    for key in derived:
-        assert req.reasons[key] == why[f"requirements.{key}"]
+    for key in derived:  # judged as written: the reason says it guards later edits
+        assert req.reasons[key].startswith(why[f"requirements.{key}"].rstrip("."))
+        assert req.reasons[key].endswith("it guards later edits of the design against "
+                                          "reaching less than the design reached")
+    assert not any(r.get("informational") for r in verification_matrix(d.plan)
+                   if r["requirement"] in derived)
     stated = {r["requirement"]: r["stated"] for r in verification_matrix(d.plan)}
     assert not any(stated[key] for key in derived)
     assert stated["full_scale_force_N"] and stated["kr_over_km"]

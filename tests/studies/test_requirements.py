@@ -55,7 +55,8 @@ def test_a_design_without_the_section_gets_derived_requirements_not_the_papers()
     # the derived full-scale force is the binding limit rounded down: the matrix passes
     # (but for the paper's 2.5 V excitation, above TN-502's guidance: undecided, not failed)
     rows = verification_matrix(plan)
-    assert all(r["pass"] for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT)
+    assert all(r["pass"] for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT
+               and r["verdict"] != "info")  # info: the design's own figure, not judged
     assert matrix_passed(rows)
 
 

@@ -53,7 +53,10 @@ def test_the_derived_kobj_resolution_is_what_the_designs_read_out_chain_reaches(
     assert "[readout] chain" in req.reasons["kobj_resolution_rel"]
     res = record(verification_matrix(plan, requirements=req), "kobj_resolution_rel")
     assert res["predicted"] == pytest.approx(reached)
-    assert res["verdict"] == "pass" and 0 < res["margin_rel"] < 0.2
+    # derived from the prediction it is tested against: reported, not judged (INFO); the
+    # value it would be held to clears the prediction by its error
+    assert res["verdict"] == "info" and res["target"] is None and res["margin_rel"] is None
+    assert 0 < res["reference_value"] / res["predicted"] - 1.0 < 0.2
     # a noisier chain reads forces worse: the requirement it derives follows it
     noisy = make(drop_requirements=("kobj_resolution_rel",), **NOISY_CHAIN)
     assert requirements_of(noisy).kobj_resolution_rel > 5 * req.kobj_resolution_rel
@@ -99,8 +102,8 @@ def test_a_derived_ratio_is_the_smallest_rows_and_verify_passes_it(capsys):
     assert cli.main(["verify", "--model", "closed-form", "--json", "--quiet", *sets]) == 0
     out = json.loads(capsys.readouterr().out)
     assert all(r["verdict"] != "fail" for r in out["matrix"])
-    # every derived requirement is decided at the level it was derived from
-    assert record(out["matrix"], "k_tolerance_rel")["verdict"] == "pass"
+    # a K band the lab never stated is reported, not judged
+    assert record(out["matrix"], "k_tolerance_rel")["verdict"] == "info"
 
 
 def _pair(row, ratio, error):
@@ -223,8 +226,9 @@ def test_a_derived_k_band_is_met_by_the_toleranced_design_it_was_derived_for():
     plan = example(drop_requirements=("k_tolerance_rel",), **looser)
     matrix = verification_matrix(plan, "closed-form")
     web, toleranced = record(matrix, "k_tolerance_rel"), record(matrix, "k_tolerance_rel_toleranced")
-    assert toleranced["predicted"] > web["target"]  # the web alone is the narrower band
-    assert toleranced["pass"] and toleranced["target"] >= toleranced["predicted"]
+    assert toleranced["predicted"] > web["reference_value"]  # the web alone: the narrower band
+    assert toleranced["verdict"] == "info" and toleranced["pass"] is None
+    assert toleranced["reference_value"] >= toleranced["predicted"]
     stated = example(**{**looser, "requirements.k_tolerance_rel": 0.004})
     assert not record(verification_matrix(stated, "closed-form"), "k_tolerance_rel_toleranced")["pass"]
 

@@ -58,7 +58,7 @@ def trade_table(report: dict) -> str:
     """The figures as text: one line per level and one for ``auto``."""
     lines = [f"tactcad bench verify: {report['design']}"]
     for row in report["levels"]:
-        verdicts = ", ".join(f"{k} {v}" for k, v in row["verdicts"].items() if v != "pass")
+        verdicts = ", ".join(f"{k} {v}" for k, v in row["verdicts"].items() if v not in ("pass", "info"))
         lines.append(f"  {row['model']:<12} {row['seconds']:8.2f} s   "
                      f"{verdicts or 'every requirement pass'}")
     auto = report["auto"]

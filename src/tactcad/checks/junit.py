@@ -3,7 +3,10 @@
 One ``<testcase>`` per check, named ``check: subject``; a failed check holds
 a ``<failure>`` whose message is the line ``tactcad check`` prints for it, an
 undecided one (a requirement whose margin lies inside its model's error) a
-``<skipped>`` with that line as its reason, so CI counts it apart from a pass.
+``<skipped>`` with that line as its reason, so CI counts it apart from a pass. An
+info one (a figure reported, not judged: a requirement the lab never stated) is a
+``<skipped>`` of type ``info`` too: every JUnit reader counts a skipped case as not
+failed and apart from the passed ones, as ``check`` counts it (not among the passed).
 Test cases are grouped into ``<testsuite>`` elements by what they check,
 as each check group declares (:mod:`tactcad.checks.groups`):
 
@@ -61,6 +64,8 @@ def junit_report(groups: Sequence[Group], part_names: Iterable[str],
             case = TestCase(f"{r.check}: {r.subject}", classname=key, time=0.0)
             if not r.passed:
                 case.result = [Failure(r.line(), type_=r.check)]
+            elif getattr(r, "info", False):  # reported, not judged: not failed, not passed
+                case.result = [Skipped(r.line(), type_="info")]
             elif getattr(r, "undecided", False):  # neither a pass nor a failure: its reason
                 case.result = [Skipped(r.line(), type_="undecided")]
             if r.detail:

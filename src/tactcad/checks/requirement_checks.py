@@ -55,9 +55,7 @@ def requirement_records(plan, model: str = AUTO) -> list[dict]:
 
 def requirement_checks(plan, model: str = AUTO) -> list[CheckResult]:
     """One :class:`CheckResult` per requirement of ``plan`` (see
-    :func:`requirement_records`): failed when its verdict is ``fail``; an ``undecided`` one
-    (margin inside the error estimate of the highest level that computes it) passes, marked
-    undecided (``status``).
+    :func:`requirement_records`, each as :func:`requirement_check` makes it).
 
     Args:
         plan: the validated design.
@@ -66,29 +64,43 @@ def requirement_checks(plan, model: str = AUTO) -> list[CheckResult]:
     Returns:
         The results in the matrix's order.
     """
+    return [requirement_check(r, model) for r in requirement_records(plan, model)]
+
+
+def requirement_check(r: dict, model: str = AUTO) -> CheckResult:
+    """One verification record (an array's or a die's) as a check result: failed when its
+    verdict is ``fail``; an ``undecided`` one (margin inside the error estimate of the highest
+    level that computes it) passes, marked undecided; an ``info`` one (a row reported, not
+    judged: :func:`tactcad.mechanics.verdicts.reported_not_judged`) is marked info, neither
+    failed nor counted as passed, without a target or a margin (``status``).
+
+    Args:
+        r: the record (``requirement``, ``verdict``, ``target``, ``predicted``, ...).
+        model: the level asked (``auto`` or a ladder level), for an undecided one's words.
+
+    Returns:
+        The :class:`CheckResult` (check ``requirement``, subject the requirement's name).
+    """
+    from tactcad.mechanics.verdicts import INFO
     from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, binding_text, margin_text,
                                               percent_text, value_text)
 
-    out = []
-    for r in requirement_records(plan, model):
-        if r.get("informational"):  # the design's own figure (k_tolerance_rel not stated)
-            detail = (f"info: not stated, not judged: predicted {value_text(r['predicted'])} "
-                      f"(error {percent_text(r['error_estimate_rel'], sign=False)}, "
-                      f"{r['model']})" + (f"; {r['note']}" if r.get("note") else ""))
-            out.append(CheckResult("requirement", r["requirement"], True, detail))
-            continue
-        detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
-                  f"{value_text(r['predicted'])}, margin {margin_text(r)} "
-                  f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")
-        if binding_text(r):
-            detail += f", binds: {binding_text(r)}"
-        if r["requirement"] == GRID_POWER_REQUIREMENT and r["verdict"] != "pass":
-            detail += f"; {r['basis']}"
-        elif r["verdict"] == "undecided":
-            detail += "; " + _undecided_words(r, model)
-        out.append(CheckResult("requirement", r["requirement"], r["verdict"] != "fail", detail,
-                               undecided=r["verdict"] == "undecided"))
-    return out
+    if r["verdict"] == INFO:  # the design's own figure (a requirement the lab never stated)
+        detail = (f"info: not stated, not judged: predicted {value_text(r['predicted'])} "
+                  f"(error {percent_text(r['error_estimate_rel'], sign=False)}, "
+                  f"{r['model']})" + (f"; {r['note']}" if r.get("note") else ""))
+        return CheckResult("requirement", r["requirement"], True, detail, info=True)
+    detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
+              f"{value_text(r['predicted'])}, margin {margin_text(r)} "
+              f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")
+    if binding_text(r):
+        detail += f", binds: {binding_text(r)}"
+    if r["requirement"] == GRID_POWER_REQUIREMENT and r["verdict"] != "pass":
+        detail += f"; {r['basis']}"
+    elif r["verdict"] == "undecided":
+        detail += "; " + _undecided_words(r, model)
+    return CheckResult("requirement", r["requirement"], r["verdict"] != "fail", detail,
+                       undecided=r["verdict"] == "undecided")
 
 
 def _undecided_words(record: dict, model: str) -> str:

@@ -16,8 +16,9 @@ from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, json_in_html
 
 def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) -> str:
     """``review/checks.js``: the check results for the page (``window.TACTCAD_CHECKS``),
-    each with its group's label and its status (pass, fail or undecided: an undecided
-    requirement passes but the page does not show it as a pass); ``groups`` lists every
+    each with its group's label and its status (pass, fail, undecided or info: an undecided
+    requirement passes but the page does not show it as a pass; an info one, reported, not
+    judged, is neither); ``groups`` lists every
     registered check group (:data:`tactcad.checks.groups.CHECK_GROUPS`) with what it
     checks, in run order.
 
@@ -39,6 +40,7 @@ def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) ->
     statuses = [c["status"] for c in checks]
     doc = {"design_sha256": design_sha256, "passed": statuses.count("pass"),
            "undecided": statuses.count("undecided"), "failed": statuses.count("fail"),
+           "info": statuses.count("info"),
            "groups": [{"name": g.name, "checks": g.checks}
                       for g in check_groups.CHECK_GROUPS.values()],
            "checks": checks}

@@ -11,6 +11,9 @@ from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, p
                               load_from_args, refuse_unknown_scenes)
 from tactcad.commands.finite_json import dumps
 
+#: The statuses ``--failures-only`` leaves out: passed, and info (reported, not judged).
+SHOWN_IN_FULL_ONLY = ("pass", "info")
+
 
 def register(sub: argparse._SubParsersAction) -> None:
     from tactcad.checks.groups import groups_help
@@ -74,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
                f"({time.perf_counter() - t0:.1f} s)")
         if not args.json:
             for r in found:
-                if not (status_of(r) == "pass" and args.failures_only):
+                if not (status_of(r) in SHOWN_IN_FULL_ONLY and args.failures_only):
                     print(r.line(), flush=True)
 
     result = project.check(args.out, args.scene, cache=store_choice(args), progress=report,
@@ -95,7 +98,8 @@ def run(args: argparse.Namespace) -> int:
                      "export_refusal": result.export_refusal, **counts, "junit": args.junit,
                      "checks": [{"check": r.check, "subject": r.subject, "passed": r.passed,
                                  "status": status_of(r), "detail": r.detail} for r in result.results
-                                if not (status_of(r) == "pass" and args.failures_only)]}, indent=1))
+                                if not (status_of(r) in SHOWN_IN_FULL_ONLY
+                                        and args.failures_only)]}, indent=1))
     else:
         print(counts_text(counts))
     return 1 if bad else 0

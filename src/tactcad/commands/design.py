@@ -1982,7 +1982,7 @@ def margin_lines(margins: list[dict]) -> list[str]:
     then each record's note (the K spread over the web tolerance, not judged)."""
     notes = [f"note: {note}" for note in dict.fromkeys(m["note"] for m in margins
                                                         if m.get("note"))]
-    open_ = [m for m in margins if m["verdict"] != "pass"]
+    open_ = [m for m in margins if m["verdict"] not in ("pass", "info")]  # info: not judged
     if not open_:
         return ["margins: every requirement passes at the closed form by more than its error "
                 "estimate, so `verify --model auto` decides it there", *notes]
@@ -2010,6 +2010,8 @@ def verification_lines(v: dict | None) -> list[str]:
         else f"the ladder climbed to {v['level']} for what the closed form left undecided"))
     out = [head]
     for q in v["requirements"]:
+        if q["verdict"] == "info":  # reported, not judged: no verdict to tell
+            continue
         if q["verdict"] != "pass" or q["decided_by"] != "closed-form":
             margin = "" if q["margin_rel"] is None else f" {100 * q['margin_rel']:+.1f} %"
             out.append(f"  {q['requirement']}: {q['verdict'].upper()}{margin} "

@@ -596,13 +596,19 @@ def die_requirement_checks(plan, mount=None) -> list:
     """The die's verification matrix (:func:`tactcad.products.silicon_die.commands.die_views.die_verification`)
     as check results, one per requirement: failed when its verdict is ``fail``; an
     ``undecided`` one (a margin inside its model's error estimate, or a mean strength
-    without a Weibull pair) passes, marked undecided."""
+    without a Weibull pair) passes, marked undecided; an ``info`` one (reported, not judged)
+    is marked info, as an array's (:func:`tactcad.checks.requirement_checks.requirement_check`)."""
     from tactcad.checks.check_result import CheckResult
+    from tactcad.checks.requirement_checks import requirement_check
+    from tactcad.mechanics.verdicts import INFO
     from tactcad.products.silicon_die.studies.die_verification import die_verification
     from tactcad.studies.verification import binding_text, margin_text, value_text
 
     out = []
     for r in die_verification(plan, mount):
+        if r["verdict"] == INFO:  # the one convention: no target, no margin, not a pass
+            out.append(requirement_check(r))
+            continue
         detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
                   f"{value_text(r['predicted'])}, margin {margin_text(r)} ({r['model']})")
         if binding_text(r):
@@ -820,7 +826,7 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                      "checks_export_prints": sum(c.check not in READ_BACK_CHECKS
                                                  for c in checks)}, indent=1))
     else:
-        shown = [c for c in checks if not (args.failures_only and c.status == "pass")]
+        shown = [c for c in checks if not (args.failures_only and c.status in ("pass", "info"))]
         print("\n".join([f"checking the die {found.name} in {out}",
                          *[c.line() for c in shown], counts_text(counts),
                          read_back_said(checks)]))

@@ -178,13 +178,13 @@ def print_check(used: dict, check: dict) -> None:
     print("tolerances used (source: the design's [tolerances]; what-if overrides marked):")
     for key, u in used.items():
         print(f"  {key} = {u['value']}  ({u['source']})")
-    verdict = "holds" if check["pass"] else "does not hold"
-    if not check.get("stated", True):  # the design's own spread, padded: nothing to hold
+    if check.get("verdict") == "info":  # the design's own spread, padded: nothing to hold
         print(f"K band: worst element {check['worst_element']}, 95 % interval "
               f"+/-{100 * check['predicted_band_rel']:.2f} % (k_tolerance_rel not stated: "
               f"reported, not judged; the design's own web band, padded, is "
-              f"{100 * check['target']:.3g} %)")
+              f"{100 * check['reference_value']:.3g} %)")
         return
+    verdict = "holds" if check["pass"] else "does not hold"
     print(f"K band: worst element {check['worst_element']}, 95 % interval "
           f"+/-{100 * check['predicted_band_rel']:.2f} % against k_tolerance_rel "
           f"{100 * check['target']:.3g} %: the toleranced design {verdict} it")

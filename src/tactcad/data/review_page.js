@@ -629,20 +629,23 @@ function showChecks() {
     body.replaceChildren(el('p', 'Not run on this export yet: `tactcad check --out <this export>` adds its results here.'));
     return;
   }
-  // an undecided requirement passes the checks but is not shown as a pass
+  // an undecided requirement passes the checks but is not shown as a pass; an info one
+  // (reported, not judged: a requirement the lab never stated) is neither passed nor failed
   const status = (r) => r.status || (r.passed ? 'pass' : 'fail');
   const counts = (found) => {
     const bad = found.filter((r) => status(r) === 'fail').length;
     const open = found.filter((r) => status(r) === 'undecided').length;
-    return [found.length - bad - open, open, bad];
+    const info = found.filter((r) => status(r) === 'info').length;
+    return [found.length - bad - open - info, open, bad, info];
   };
-  const countText = ([good, open, bad]) =>
-    `${good} passed, ${open ? `${open} undecided, ` : ''}${bad} failed`;
-  const [good, open, bad] = counts(c.checks);
+  const countText = ([good, open, bad, info]) =>
+    `${good} passed, ${open ? `${open} undecided, ` : ''}${bad} failed${info ? `, ${info} info` : ''}`;
+  const [good, open, bad, info] = counts(c.checks);
   const head = el('p');
   head.append(el('span', `${good} passed`, 'pass'), ', ');
   if (open) head.append(el('span', `${open} undecided`, 'undecided'), ', ');
   head.append(el('span', `${bad} failed`, bad ? 'fail' : 'pass'));
+  if (info) head.append(', ', el('span', `${info} info`, 'info'));
   // one table per check group, in the order the groups run; failures first within each
   const groups = (c.groups || []).map((g) => g.name);
   for (const r of c.checks) if (!groups.includes(r.group)) groups.push(r.group);
@@ -653,9 +656,9 @@ function showChecks() {
     if (!found.length) continue;
     const n = counts(found);
     const title = el('h3', `${name}: ${countText(n)}`, n[2] ? 'fail' : (n[1] ? 'undecided' : 'pass'));
-    const order = { fail: 0, undecided: 1, pass: 2 };
+    const order = { fail: 0, undecided: 1, pass: 2, info: 3 };
     const rows = [...found].sort((a, b) => order[status(a)] - order[status(b)])
-      .map((r) => ({ result: { fail: 'FAIL', undecided: 'UNDECIDED', pass: 'pass' }[status(r)],
+      .map((r) => ({ result: { fail: 'FAIL', undecided: 'UNDECIDED', pass: 'pass', info: 'INFO' }[status(r)],
                      check: r.check, subject: r.subject, detail: r.detail }));
     parts.push(title);
     if (described[name]) parts.push(el('p', described[name]));

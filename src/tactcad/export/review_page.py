@@ -350,22 +350,27 @@ def unmet_requirements(requirements: dict) -> list[str]:
 
 
 def _verdict(record: dict) -> str:
+    """A record's verdict: ``info`` for a row reported, not judged (a manifest written before
+    such rows said so in ``verdict`` marks them ``informational``)."""
+    from tactcad.mechanics.verdicts import INFO
+
     if record.get("informational"):  # the design's own figure, reported, not judged
-        return "info"
+        return INFO
     return record.get("verdict", "pass" if record.get("pass") else "fail")
 
 
 def verification_row(r: dict) -> dict:
     """One requirement as the page's table shows it (texts, in the CLI's columns;
     the page's script lists them in this order, ``VERIFY_COLUMNS``)."""
-    from tactcad.studies.verification import binding_text, margin_text, value_text
+    from tactcad.studies.verification import binding_text, margin_text, target_text, value_text
 
     err = r.get("error_estimate_rel")
-    return {"requirement": r["requirement"], "verdict": _verdict(r).upper(),
-            "target": value_text(r.get("target")),
+    shown = {**r, "verdict": _verdict(r)}  # a row reported, not judged: no target, no margin
+    return {"requirement": r["requirement"], "verdict": shown["verdict"].upper(),
+            "target": target_text(shown),
             "predicted": value_text(r.get("predicted"))
             + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
-            "margin": margin_text(r),
+            "margin": margin_text(shown),
             "binds": binding_text(r), "model": r.get("model", "")}
 
 

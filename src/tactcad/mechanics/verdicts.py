@@ -1,4 +1,6 @@
-"""A prediction's verdict against a requirement: pass, fail or undecided.
+"""A prediction's verdict against a requirement: pass, fail or undecided; a row
+reported, not judged (a figure the lab states no requirement for), has the
+verdict ``info`` (:func:`reported_not_judged`).
 
 A prediction with relative error estimate e and margin m (positive: met) on a
 requirement that needs margin t passes when m - t >= e, fails when
@@ -22,6 +24,9 @@ from typing import Sequence
 
 #: A requirement's verdict at one level (:func:`verdict`).
 VERDICTS = ("pass", "fail", "undecided")
+#: The verdict of a row reported, not judged (:func:`reported_not_judged`): neither a pass
+#: nor a failure, and never counted as either.
+INFO = "info"
 #: Verdicts from the worst: a multi-item record takes its worst item's.
 VERDICT_RANK = {"fail": 0, "undecided": 1, "pass": 2}
 
@@ -50,6 +55,25 @@ def verdict(margin_rel: float | None, error_rel: float | None, threshold_rel: fl
     if clearance < -error_rel:
         return "fail"
     return "undecided"
+
+
+def reported_not_judged(record: dict) -> dict:
+    """``record`` as a row reported, not judged: a figure of the design's own that the lab
+    states no requirement for (a K band the design file leaves out, a K_obj resolution
+    derived from the very prediction it would be tested against), which no prediction can
+    fail. One convention for every output that shows such a row: ``verdict`` :data:`INFO`,
+    ``informational`` True, ``pass``, ``target`` and ``margin_rel`` None (no target, no
+    margin), the value the row would have been held to kept as ``reference_value``.
+
+    Args:
+        record: a verification record (``target``, ``margin_rel``, ``pass``, ...).
+
+    Returns:
+        A new record (``record`` unchanged).
+    """
+    reference = record.get("reference_value", record.get("target"))
+    return {**record, "informational": True, "verdict": INFO, "pass": None, "target": None,
+            "margin_rel": None, "reference_value": reference}
 
 
 def judged(item: dict, threshold_rel: float = 0.0) -> dict:

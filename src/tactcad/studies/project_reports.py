@@ -194,7 +194,7 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
         the fields ``design`` (its name), ``source``, ``kobj_range_N_per_mm`` (also under its
         deprecated name ``K_obj_range_N_per_mm``, listed in ``deprecated_keys``), ``warnings``
         (a ``kobj`` outside that range, as a die's record has them), ``tolerances_used``,
-        ``k_tolerance_check``; the draw's wall time, s).
+        ``k_tolerance_check`` (:func:`k_tolerance_check`); the draw's wall time, s).
 
     Raises:
         DesignError: a what-if tolerance that lets its feature vanish, a bad ``reference``,
@@ -219,14 +219,36 @@ def tolerance_record(plan, samples: int, seed: int, kobj: Sequence[float] | None
                            reference=reference, mapper=mapper)
     wall = time.perf_counter() - t0
     req = requirements_of(plan)
-    # not stated by the lab: the target is the design's own padded spread, not a requirement
-    check = {**band_check(plan, report, req.k_tolerance_rel),
-             "stated": "k_tolerance_rel" in req.stated}
+    check = k_tolerance_check(band_check(plan, report, req.k_tolerance_rel),
+                              "k_tolerance_rel" in req.stated)
     fields = {"design": plan.name, "source": "design",
               "kobj_range_N_per_mm": list(req.kobj_range_N_per_mm),
               "warnings": kobj_range_warnings(kobj or (), req.kobj_range_N_per_mm),
               "tolerances_used": tolerances_used(plan, tol), "k_tolerance_check": check}
     return report, with_declared_deprecated_keys(fields, KOBJ_RANGE_RENAMED), wall
+
+
+def k_tolerance_check(check: dict, stated: bool) -> dict:
+    """``tactcad tolerance``'s ``k_tolerance_check``: the K band check
+    (:func:`tactcad.studies.tolerance_budget.band_check`) with its ``verdict`` and
+    ``stated``; where the lab states no ``k_tolerance_rel`` its target is the design's own
+    padded spread, not a requirement, so the check is reported, not judged, as verify's row
+    (:func:`tactcad.mechanics.verdicts.reported_not_judged`: verdict ``info``, ``pass`` and
+    ``target`` None, the padded spread as ``reference_value``).
+
+    Args:
+        check: the band check (``target``, ``predicted_band_rel``, ``pass``, ...; relative).
+        stated: whether the design file states ``k_tolerance_rel``.
+
+    Returns:
+        A new dict (``check`` unchanged).
+    """
+    from tactcad.mechanics.verdicts import reported_not_judged
+
+    out = {**check, "stated": stated}
+    if not stated:
+        return reported_not_judged(out)
+    return {**out, "verdict": "pass" if check["pass"] else "fail"}
 
 
 def kobj_range_warnings(kobj: Sequence[float], kobj_range: Sequence[float]) -> list[str]:

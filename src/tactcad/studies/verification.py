@@ -49,7 +49,8 @@ from tactcad.design.requirements_section import (REQUIREMENT_KEYS, cites_paper,
                                                  stated_footprint, stated_number,
                                                  stated_requirements)
 from tactcad.mechanics.stack_crosstalk import crosstalk_records
-from tactcad.mechanics.verdicts import VERDICTS, deciding_item, judged, verdict  # noqa: F401 (API)
+from tactcad.mechanics.verdicts import (INFO, VERDICTS, deciding_item, judged,  # noqa: F401 (API)
+                                        reported_not_judged, verdict)
 from tactcad.studies.resonance import resonance_records, resonance_summary
 from tactcad.mechanics.thermal_drift import thermal_record
 
@@ -612,7 +613,8 @@ def _requirements_from(plan: Plan, figures: Figures | None,
     if fig is not figures:  # units read at another level are not the closed form's
         units, kept = None, None
     values: dict[str, Any] = dict(stated)
-    reasons = {k: derived.get(k, "stated in the design file") for k in stated}
+    reasons = {k: guards_later_edits(derived[k]) if k in derived else "stated in the design file"
+               for k in stated}
     if "full_scale_force_N" not in values:
         b = binding(plan_limits(plan, "closed-form", fig.stresses, fig.k_error))
         values["full_scale_force_N"] = round_down(b.force_N)
@@ -659,6 +661,27 @@ def _requirements_from(plan: Plan, figures: Figures | None,
         footprint_mm=stated_footprint(plan.raw))
 
 
+#: What a reason a design file marks as ``tactcad design``'s own
+#: (:data:`~tactcad.design.requirements_section.DERIVED_BY_DESIGN`) is followed by in
+#: ``verify``: the value stays judged.
+GUARDS_LATER_EDITS = ("judged as the design file gives it: it guards later edits of the "
+                      "design against reaching less than the design reached")
+
+
+def guards_later_edits(reason: str) -> str:
+    """The reason ``verify`` gives a requirement value ``tactcad design`` wrote into the
+    design file from its own prediction: the file's reason, then
+    :data:`GUARDS_LATER_EDITS` (the value is judged, unlike one derived anew).
+
+    Args:
+        reason: the file's reason (under ``[assumptions]``).
+
+    Returns:
+        The reason, in words.
+    """
+    return f"{reason.rstrip().rstrip('.')}; {GUARDS_LATER_EDITS}"
+
+
 def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float,
                             units: SensingUnits | None = None,
                             kept: dict | None = None) -> tuple[float, str]:
@@ -682,9 +705,46 @@ def derived_kobj_resolution(plan: Plan, fig: Figures, rng, force_N: float,
                    f"force, {100 * worst:.3g} % ({fig.model}, each element read through the "
                    f"design's [readout] chain to {1e3 * min(forces):.3g}-{1e3 * max(forces):.3g} "
                    f"mN), padded by its error and rounded up"
-                   + ("" if value < UNREADABLE_RESOLUTION_REL else
+                   + ("; reported, not judged: derived from the prediction it would be tested "
+                      "against, it cannot fail: state the resolution your use needs to judge "
+                      "it" if value < UNREADABLE_RESOLUTION_REL else
                       f", at most {UNREADABLE_RESOLUTION_REL:g} (the largest a design may state: "
                       f"{why})"))
+
+
+#: The rows of the K band over the tolerances, reported, not judged, where the design file
+#: states no ``k_tolerance_rel``.
+K_BAND_ROWS = ("k_tolerance_rel", "k_tolerance_rel_toleranced")
+
+
+def informational_requirements(req: Requirements) -> frozenset[str]:
+    """The matrix rows reported, not judged (:func:`reported_not_judged`: verdict ``info``,
+    no target, no margin): the design's own figures, which no prediction can fail.
+
+    * the K band rows (:data:`K_BAND_ROWS`) where the design file gives no
+      ``k_tolerance_rel`` (or an earlier ``tactcad design`` wrote its own band's, read as
+      not stated): their reference is the design's own band, padded;
+    * ``kobj_resolution_rel`` where the design file gives none: derived from the very
+      prediction the row tests (:func:`derived_kobj_resolution`, padded by its error), unless
+      the derivation stopped at :data:`UNREADABLE_RESOLUTION_REL`, the largest a design may
+      state, which a design reading worse fails (judged).
+
+    A value the design file carries is judged, even one ``tactcad design`` wrote from its
+    own prediction (marked under ``[assumptions]``): it guards later edits.
+
+    Args:
+        req: the design's :func:`requirements_of`.
+
+    Returns:
+        The requirement names of the rows shown as INFO.
+    """
+    out = set()
+    if "k_tolerance_rel" not in req.written:
+        out.update(K_BAND_ROWS)
+    if "kobj_resolution_rel" not in req.written \
+            and req.kobj_resolution_rel < UNREADABLE_RESOLUTION_REL:
+        out.add("kobj_resolution_rel")
+    return frozenset(out)
 
 
 #: The requirements on reading K_obj (eq. 3), which apply where a row has a measuring element.
@@ -898,11 +958,12 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     positive means met. K_r / K_m passes within the K band the requirements
     allow (margin >= -k_tolerance_rel); the others pass with margin >= 0.
     The full-scale-force record lists every limit (``limits``) and the one
-    that binds (``binding_limit``). Where the design states no ``k_tolerance_rel`` (or an
-    earlier ``tactcad design`` wrote its own prediction's), its two K band records are the
-    design's own figures, not requirements: ``informational`` (verdict ``pass``, shown as
-    INFO), the web band's with a ``note`` (:func:`k_spread_note`) when K spreads beyond
-    :data:`K_SPREAD_NOTE_REL`. ``stress``: as :func:`element_figures`
+    that binds (``binding_limit``). The rows of :func:`informational_requirements` (the two
+    K band records where the design file gives no ``k_tolerance_rel``, the K_obj resolution
+    where it gives none) are the design's own figures, not requirements:
+    :func:`reported_not_judged` (verdict ``info``, ``pass``, ``target`` and ``margin_rel``
+    None, shown as INFO), the web band's with a ``note`` (:func:`k_spread_note`) when K
+    spreads beyond :data:`K_SPREAD_NOTE_REL`. ``stress``: as :func:`element_figures`
     (an FEM level needs :func:`tactcad.studies.strength_studies.element_stress`).
     ``below``, ``keep``: as :func:`element_figures`: the parts named in ``keep`` keep a lower
     level's figures and limits (with its errors); each listed limit then says its ``level``
@@ -958,11 +1019,11 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         (lambda band: padded_band_requirement(band, error))
     if reported or derive is None:
         out.append(toleranced_band_record(plan, req.k_tolerance_rel, error, derive))
-    if derive is not None:  # not stated: the design's own band, reported, never judged
+    # not stated: the design's own figures, reported, never judged (verdict info)
+    unjudged = informational_requirements(req)
+    out = [reported_not_judged(r) if r["requirement"] in unjudged else r for r in out]
+    if derive is not None:
         note = k_spread_note(plan, req) if reported else None
-        for r in out:
-            if r["requirement"] in ("k_tolerance_rel", "k_tolerance_rel_toleranced"):
-                r.update(informational=True, verdict="pass")
         if note:  # once, on the web band's row
             next(r for r in out if r["requirement"] == "k_tolerance_rel")["note"] = note
     if req.footprint_mm is not None:
@@ -1762,13 +1823,10 @@ def matrix_table(records: list[dict]) -> str:
             "binds |",
             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
-        info = r.get("informational")  # a design's own figure, not a requirement: no verdict
-        rows.append(f"| {r['requirement']} | "
-                    f"{'not stated' if info else value_text(r['target'])} | "
+        rows.append(f"| {r['requirement']} | {target_text(r)} | "
                     f"{value_text(r['predicted'])} | "
                     f"{percent_text(r['error_estimate_rel'], sign=False)} | "
-                    f"{'n/a' if info else margin_text(r)} | {r['model']} | "
-                    f"{'INFO' if info else r['verdict'].upper()} | "
+                    f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
                     f"{binding_text(r)} |")
     for r in records:
         for lim in r.get("limits", ()):
@@ -1778,9 +1836,18 @@ def matrix_table(records: list[dict]) -> str:
     return "\n".join(rows)
 
 
+def target_text(record: dict) -> str:
+    """A record's target as verify, check and the review page show it: ``not stated`` for
+    a row reported, not judged (verdict ``info``: it has none), else :func:`value_text`."""
+    return "not stated" if record.get("verdict") == INFO else value_text(record.get("target"))
+
+
 def margin_text(record: dict) -> str:
     """A record's margin in percent, with the margin it is allowed when that is not 0
-    (K_r / K_m within the K band: ``-20.2 % (allowed -24.0 %)``)."""
+    (K_r / K_m within the K band: ``-20.2 % (allowed -24.0 %)``); ``n/a`` for a row
+    reported, not judged (verdict ``info``) or without a finite margin."""
+    if record.get("verdict") == INFO:
+        return "n/a"
     allowed = record.get("allowed_margin_rel")
     text = percent_text(record.get("margin_rel"))
     return text if not allowed else f"{text} (allowed {percent_text(allowed)})"
