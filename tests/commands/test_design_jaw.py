@@ -329,7 +329,11 @@ def test_more_columns_than_any_comb_takes_pastes_the_most_the_pocket_holds(tmp_p
     assert r.returncode == 2, r.stderr
     error = json.loads(r.stdout)["error"]
     assert (error["field"], error["value"]) == ("--columns", int(columns))
-    assert "1 ... 12 for a monolithic comb" in error["allowed"]
+    # the range that binds is the pocket's (6 columns), not the grid's 1 ... 12 the refusal
+    # stated before pasting 6
+    assert error["allowed"] == (f"1 ... {GRASPER_CASE[-1]} for a monolithic comb in this "
+                                "jaw's pocket")
+    assert "the grid's range (array.columns) is 1 ... 12" in error["message"]
     assert [a["option"] for a in error["alternatives"]] == [f"--columns {GRASPER_CASE[-1]}"]
     assert "the pocket holds" in error["alternatives"][0]["words"]
     assert not list(tmp_path.iterdir())
@@ -709,7 +713,10 @@ def test_design_columns_name_each_products_own_range(tmp_path):
                 "--jaw", "10", "--construction", "monolithic-comb", "--out",
                 str(tmp_path / "c.toml"))
     assert r.returncode == 2 and not (tmp_path / "c.toml").exists()
-    assert f"--columns = {hi + 1}: allowed {lo} ... {hi} for a monolithic comb" in r.stderr
+    # the 10 mm jaw's pocket binds first: its count is the range stated, the grid's the reason
+    assert (f"--columns = {hi + 1}: allowed {lo} ... 6 for a monolithic comb in this jaw's "
+            f"pocket (the pocket holds no longer comb; the grid's range (array.columns) is "
+            f"{lo} ... {hi})") in r.stderr, r.stderr
     r = run_cli("design", "--kr-over-km", "10", "--kobj-range", "0.5", "5",
                 "--full-scale-force", "0.05", "--columns", str(hi + 1), "--out",
                 str(tmp_path / "s.toml"), cwd=tmp_path)

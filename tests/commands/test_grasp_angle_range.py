@@ -46,3 +46,16 @@ def test_the_apis_angle_is_refused_in_the_commands_words():
     assert said == {cli_said}
     with pytest.raises(DesignError, match="the jaw's opening"):
         project.grasp(angle_deg=float("nan"))
+
+
+def test_an_angle_outside_the_jaws_range_is_refused_before_any_model_runs(capsys):
+    # with arms 5.5 x their height the comb's closed form ran first and said its range
+    # warning before the refusal
+    from tactcad import cli
+
+    design = str(ROOT / "hardware" / "grasper_jaw_10mm" / "grasper_jaw_10mm.toml")
+    assert cli.main(["grasp", "--design", design, "--set", "element.arm_height_mm=0.55",
+                     "--angle-deg", "1e6"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("tactcad: error: --angle-deg = 1000000.0: allowed 0 ... ") and \
+        "the jaw's opening" in err and "warning" not in err, err

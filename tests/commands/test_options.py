@@ -114,6 +114,12 @@ def test_drawn_command_lines_end_in_a_known_exit_code_without_traceback(
     (["evaluate", "--poisson", "0.7"], "argument --poisson: '0.7': allowed a number 0 ... 0.5"),
     (["tolerance", "--samples", "1e9"], "argument --samples: '1e9': allowed an integer"),
     (["calibrate", "--data", "x.csv", "--encoding", "klingon"], "--encoding = 'klingon'"),
+    # digits of another script (full-width) are refused as `--set` refuses them, not read
+    (["stiffness", "--element", "\uff13"], "--element = '\uff13': allowed an integer 1 ... "),
+    (["design", "--jaw", "10", "--columns", "\uff12"],
+     "argument --columns: '\uff12': allowed an integer 1 ... "),
+    (["tolerance", "--samples", "\uff15"], "argument --samples: '\uff15': allowed an integer"),
+    (["lumped", "--unit", "\uff13"], "argument --unit: invalid int value: '\uff13'"),
 ])
 def test_bad_option_values_are_refused_naming_the_option(argv, needle, capsys, tmp_path):
     (tmp_path / "x.csv").write_text("element,run,z_um,force_N,signal_V\n")

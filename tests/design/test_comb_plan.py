@@ -79,6 +79,17 @@ def test_a_stop_gap_below_the_thinnest_shim_is_refused(data):
     assert caught.value.field == "comb.stop_gaps_mm[1]"
 
 
+def test_a_combs_web_list_refused_names_a_webs_range_in_mm(data):
+    """A word where the webs go is refused naming what one web takes (it said "(mm)")."""
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"comb.web_thicknesses_mm": "thin"}))
+    assert caught.value.field == "comb.web_thicknesses_mm"
+    assert "one web per element, each 0.05 ... 1 mm" in str(caught.value)
+    with pytest.raises(DesignErrors) as caught:
+        plan_from_dict(with_overrides(data, {"comb.stop_gaps_mm": "wide"}))
+    assert "one gap per element, each > 0 ... 1 mm" in str(caught.value)
+
+
 def test_a_comb_gives_its_webs_one_way_not_both(data):
     """A shared web beside each element's would be read by nothing: refused, naming it; each
     element's alone, or one web for all alone, is a comb."""

@@ -164,3 +164,19 @@ def test_fem3d_reads_the_stored_point_past_the_range_again(web_mm):
     dev = abs(cf.stiffness_N_per_mm / fe.stiffness_N_per_mm - 1.0)
     assert cf.error_estimate_rel >= dev + fe.error_estimate_rel
     assert dev > load_correction().residual_rel or web_mm < 0.2  # the thick web leaves the fit's
+
+
+def test_the_range_warning_names_its_error_apart_from_a_gauged_results_row():
+    """With a bonded gauge the result's error estimate adds the layer's share, so the
+    warning's figure (the correction's, on the bare element) is smaller: it says so."""
+    p = max((q for q in _block()["points"] if q["geometry"]["gauge"] is not None),
+            key=lambda q: q["arm_over_arm_height"])
+    g, mat = _element(p)
+    with pytest.warns(CorrectionRangeWarning) as said:
+        r = estimate_closed_form(g, mat)
+    w = said[0].message
+    assert w.error_rel < r.error_estimate_rel
+    assert "the correction's, on the bare element's K; a result's `error estimate` adds its " \
+        "gauge layer's share" in str(w)
+    merged = CorrectionRangeWarning.merged_text([w, w])
+    assert "on the bare element's K" in merged

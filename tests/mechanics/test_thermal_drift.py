@@ -111,6 +111,24 @@ def test_steel_matched_gauge_on_6061_drifts_more_than_an_aluminium_matched_one()
             assert s["kobj_error_rel_per_K"] > a["kobj_error_rel_per_K"]
 
 
+def test_readout_reports_the_thermal_values_thermal_uses_under_the_same_keys(capsys):
+    """An unstated CTE, modulus coefficient and STC: `readout --json` states the values
+    `thermal --json` resolves (it said null), with the same sources; a stated one as stated."""
+    rep = _report(_plan())
+    from tactcad.studies.project_reports import readout_record
+
+    chain = readout_record(_plan()).chain.as_json()
+    thermal = rep.setting.as_json()
+    for key in ("substrate_cte_ppm_per_K", "gauge_stc_ppm_per_K", "substrate_modulus_tc_per_K"):
+        assert chain[key] == thermal[key] is not None, key
+        assert chain["sources"][key] == thermal["sources"][key]
+    assert main(["readout", "--json", "--set", "readout.gauge_stc_ppm_per_K=10.8"]) == 0
+    said = json.loads(capsys.readouterr().out)["chain"]
+    assert said["gauge_stc_ppm_per_K"] == 10.8
+    assert said["sources"]["gauge_stc_ppm_per_K"] == "design file"
+    assert said["substrate_cte_ppm_per_K"] == thermal["substrate_cte_ppm_per_K"]
+
+
 def test_unstated_stc_is_the_series_nearest_the_material_and_says_so():
     assert matched_stc_ppm_per_K(23.6) == (pytest.approx(23.4), 13)
     assert matched_stc_ppm_per_K(8.6) == (pytest.approx(9.0), 5)

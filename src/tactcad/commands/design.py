@@ -186,12 +186,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "its slots, notch and corner radii, webs and tolerance)")
     from tactcad.products.silicon_die.design.mems_die import COLUMNS_RANGE as DIE_COLUMNS
 
-    p.add_argument("--columns", type=count(1, max(COLUMNS_RANGE[1], DIE_COLUMNS[1]), "columns"),
+    per_product = (f"{STACKED_COLUMNS_RANGE[0]} ... {STACKED_COLUMNS_RANGE[1]} for a stacked "
+                   f"array, {COLUMNS_RANGE[0]} ... {COLUMNS_RANGE[1]} for a comb, "
+                   f"{DIE_COLUMNS[0]} ... {DIE_COLUMNS[1]} for a silicon die")
+    p.add_argument("--columns", type=count(1, max(COLUMNS_RANGE[1], DIE_COLUMNS[1]),
+                                           f"columns: {per_product}"),
                    metavar="N", default=None,
-                   help=f"columns of the new grid (2 rows x N): {STACKED_COLUMNS_RANGE[0]} ... "
-                        f"{STACKED_COLUMNS_RANGE[1]} for a stacked array, {COLUMNS_RANGE[0]} ... "
-                        f"{COLUMNS_RANGE[1]} for a comb, {DIE_COLUMNS[0]} ... {DIE_COLUMNS[1]} "
-                        "for a silicon die; default: the base design's")
+                   help=f"columns of the new grid (2 rows x N): {per_product}; default: the "
+                        "base design's")
     p.add_argument("--rows", type=count(1, 100, "rows"), metavar="2", default=None,
                    help="rows of the new grid: 2, the only value taken (the model holds two "
                         "clamped rows facing each other; any other is refused); default 2")

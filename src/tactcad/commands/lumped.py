@@ -16,7 +16,7 @@ from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError, TactcadError
 
 from tactcad.commands import add_design_arg, add_output_args
-from tactcad.commands.options import number
+from tactcad.commands.options import ascii_integer, number
 
 
 #: The option that gives each of the lumped model's inputs (its refusals name it).
@@ -52,7 +52,7 @@ def register(subparsers) -> None:
                    help="also the coupled form beside eq. 2-3: every tip of this design on one "
                         "elastic half-space (nu 0.5; in_use/tissue_coupling), --km and --kr the "
                         "unit's elements, the others at the closed form")
-    p.add_argument("--unit", type=int, metavar="ELEMENT", default=None,
+    p.add_argument("--unit", type=ascii_integer, metavar="ELEMENT", default=None,
                    help="with --coupled-design: the measuring element (its row's reference "
                         "is the unit's other tip); without --km/--kr, the array's unit whose "
                         "K_m and K_r are taken (needed where its units differ)")

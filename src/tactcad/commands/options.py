@@ -131,13 +131,34 @@ def number(lo: float | None = None, hi: float | None = None, unit: str = "", *,
     return parse
 
 
+def ascii_integer(text: str) -> int:
+    """An option's integer, in ASCII digits as a design file's TOML takes it (``int`` alone
+    reads any script's digits: a full-width ``３`` as 3, which ``--set`` refuses).
+
+    Args:
+        text: the option's value.
+
+    Returns:
+        The integer (an optional sign, ``_`` between digits as Python and TOML allow).
+
+    Raises:
+        ValueError: not an integer, or a character outside ASCII in it.
+    """
+    if not isinstance(text, str) or not text.isascii():
+        raise ValueError(f"{text!r} is no integer in ASCII digits")
+    return int(text)
+
+
+ascii_integer.__name__ = "int"  # argparse names the type in its own messages
+
+
 def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], int]:
     """An argparse type: an integer ``lo <= n <= hi`` (``what`` says of what)."""
     allowed = f"an integer {lo} ... {hi}" + (f" ({what})" if what else "")
 
     def parse(text: str) -> int:
         try:
-            n = int(text)
+            n = ascii_integer(text)
         except (TypeError, ValueError):
             raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}") from None
         if not lo <= n <= hi:
@@ -157,10 +178,11 @@ def element_number(text: str) -> int | str:
         text: the option's value.
 
     Returns:
-        ``int(text)`` where the text is an integer, else the text (at most 40 characters).
+        :func:`ascii_integer` of the text where it is an integer in ASCII digits, else the
+        text (at most 40 characters).
     """
     try:
-        return int(text)
+        return ascii_integer(text)
     except (TypeError, ValueError):
         return text[:40]
 

@@ -6,7 +6,7 @@ import argparse
 import json
 
 from tactcad.commands import add_design_arg, add_output_args, plan_from_args, product_view
-from tactcad.commands.options import count, keep_option_defaults, number
+from tactcad.commands.options import ascii_integer, count, keep_option_defaults, number
 from tactcad.errors import DesignError
 from tactcad.products.silicon_die.studies.die_tolerance import DIE_SAMPLES_RANGE
 from tactcad.studies.tolerance_montecarlo import (
@@ -40,13 +40,14 @@ def samples_count(text: str) -> int:
         text: the option's value.
 
     Returns:
-        ``int(text)``.
+        The integer (:func:`~tactcad.commands.options.ascii_integer`).
 
     Raises:
-        argparse.ArgumentTypeError: not an integer, naming both products' ranges.
+        argparse.ArgumentTypeError: not an integer in ASCII digits, naming both products'
+            ranges.
     """
     try:
-        return int(text)
+        return ascii_integer(text)
     except (TypeError, ValueError):
         raise argparse.ArgumentTypeError(
             f"{text[:40]!r}: allowed {ARRAY_SAMPLES_ALLOWED}; on a silicon die's design "

@@ -10,7 +10,7 @@ import threading
 from pathlib import Path
 from typing import Callable
 
-from tactcad.commands.options import output_folder
+from tactcad.commands.options import ascii_integer, output_folder
 from tactcad.commands import add_cache_args, add_design_arg, add_output_args, store_from_args
 
 DEFAULT_PORT = 8321
@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_design_arg(p)
     p.add_argument("--out", metavar="DIR", type=output_folder, default="exports",
                    help="the export folder kept current (default: exports)")
-    p.add_argument("--port", metavar="N", type=int, default=DEFAULT_PORT,
+    p.add_argument("--port", metavar="N", type=ascii_integer, default=DEFAULT_PORT,
                    help=f"port of the review page on 127.0.0.1 and [::1], 1024 ... 65535 or 0 "
                         f"for any free one (default: {DEFAULT_PORT})")
     p.add_argument("--poll", action="store_true",

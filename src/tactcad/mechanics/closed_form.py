@@ -89,7 +89,7 @@ WEB_BRACKET_MM = (0.05, 1.0)
 
 __all__ = ["ALPHA_SHEAR", "ComplianceParts", "Correction", "CorrectionRangeWarning",
            "IDENTITY", "NotchIntegrals", "closed_form_compliance", "closed_form_stiffness",
-           "correction_factor", "corrected_element_k", "corrected_point_strain",
+           "correction_factor", "correction_factor_and_error", "corrected_element_k", "corrected_point_strain",
            "estimate_closed_form", "face_strain_factor", "gauge_strain_per_newton", "notch_integrals",
            "web_for_stiffness"]
 
@@ -319,6 +319,28 @@ def correction_factor(g: ElementGeometry, material: Material,
     parts = _parts(g, material, g.web_thickness_mm)
     k, _ = _corrected(parts, g, material, g.web_thickness_mm, corr, warn=False)
     return k * float(parts.total)
+
+
+def correction_factor_and_error(g: ElementGeometry, material: Material,
+                                correction: Correction | None = None) -> tuple[float, float]:
+    """K_corrected / K_EB of one element and the correction's own error estimate there.
+
+    Args:
+        g: element geometry (mm); its bonded gauge is not counted (the bare element's).
+        material: its material (MPa).
+        correction: explicit correction (default: the file of
+            :func:`~tactcad.mechanics.correction.load_correction`).
+
+    Returns:
+        (f, e): the factor (dimensionless) and the relative error of the corrected K
+        against fem3d (dimensionless: the fit's residual plus, outside the fitted range,
+        its extrapolation and its measured growth past the fitted arm / arm height), no
+        range warning.
+    """
+    corr = _resolve(True, correction)
+    parts = _parts(g, material, g.web_thickness_mm)
+    k, err = _corrected(parts, g, material, g.web_thickness_mm, corr, warn=False)
+    return k * float(parts.total), err
 
 
 def width_gain(g: ElementGeometry, material: Material,

@@ -85,6 +85,12 @@ RANGE_KEYS = ("t_over_R", "width_ratio", "web_over_sheet", "poisson_ratio", "web
               "notch_radius_mm", "arm_mm", "sheet_mm", "arm_over_arm_height")
 
 
+#: What a range warning's estimated error is of: the correction's on the bare element, which a
+#: result's `error estimate` row (K, with its bonded gauge) raises by its layer's share.
+BARE_K_SAID = ("the correction's, on the bare element's K; a result's `error estimate` adds "
+               "its gauge layer's share")
+
+
 class CorrectionRangeWarning(UserWarning):
     """A correction is applied outside the range it was fitted over.
 
@@ -145,9 +151,9 @@ class CorrectionRangeWarning(UserWarning):
         return (f"closed-form stiffness correction used outside its fitted range "
                 f"({'; '.join(parts)}) by {len(said)} estimates ({what}); estimated error up "
                 f"to {100 * worst.error_rel:.2g} % at the worst, {at}"
-                f"{' ' + worst.where if worst.where else ''} (the correction is fitted to "
-                "fem3d solves of elements inside that range; `tactcad stiffness --model fem3d` "
-                "solves an element without it)")
+                f"{' ' + worst.where if worst.where else ''} ({BARE_K_SAID}; the correction is "
+                "fitted to fem3d solves of elements inside that range; `tactcad stiffness "
+                "--model fem3d` solves an element without it)")
 
 
 @contextmanager
@@ -514,7 +520,7 @@ def warn_outside(correction: Correction, out: Mapping[str, np.ndarray], n_out: i
             for k in out if np.size(values.get(k))}
     warnings.warn(CorrectionRangeWarning(
         f"closed-form stiffness correction used outside its fitted range at {n_out} of {n} "
-        f"points ({which}); estimated error up to {100 * error_rel:.2g} % (the correction is "
-        "fitted to fem3d solves of elements inside that range; `tactcad stiffness --model "
-        "fem3d` solves an element without it)", error_rel,
+        f"points ({which}); estimated error up to {100 * error_rel:.2g} % ({BARE_K_SAID}; the "
+        "correction is fitted to fem3d solves of elements inside that range; `tactcad "
+        "stiffness --model fem3d` solves an element without it)", error_rel,
         left if len(left) == len(out) else None), stacklevel=3)

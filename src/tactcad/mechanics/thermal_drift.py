@@ -80,7 +80,7 @@ Units: K, ppm/K, 1/K, N, N/K, W, mm, ohm; strain dimensionless.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -254,6 +254,38 @@ def thermal_setting(plan: Plan, chain: ReadoutChain | None = None) -> ThermalSet
     return ThermalSetting(cte, stc, chain.gauge_factor_tc_pct_per_100K / 100.0 / 100.0,
                           chain.gauge_transverse_sensitivity, chain.dummy_gauge == "half-bridge",
                           {k: src[k] for k in keys}, modulus_tc, sourced, chain.lead_wires)
+
+
+#: The [readout] keys a design may leave unstated that the thermal model resolves (the
+#: material grade's CTE and modulus coefficient, the STC series matched to that CTE):
+#: {chain key: :class:`~tactcad.mechanics.thermal_drift.ThermalSetting` attribute}.
+THERMAL_RESOLVED = {"substrate_cte_ppm_per_K": "substrate_cte_ppm_per_K",
+                    "gauge_stc_ppm_per_K": "stc_ppm_per_K",
+                    "substrate_modulus_tc_per_K": "modulus_tc_per_K"}
+
+
+def with_thermal_values(plan: Plan, chain: ReadoutChain) -> ReadoutChain:
+    """``chain`` with the thermal keys the design leaves unstated set to the values
+    ``tactcad thermal`` uses, and their sources to where those come from, so that a key
+    names one quantity in both outputs.
+
+    Args:
+        plan: the design. chain: its resolved ``[readout]``.
+
+    Returns:
+        The chain (ppm/K, 1/K); unchanged where the material names no library grade, so
+        the values stay unknown (``None``, their sources saying what is missing).
+    """
+    if all(getattr(chain, key) is not None for key in THERMAL_RESOLVED):
+        return chain
+    try:
+        setting = thermal_setting(plan, chain)
+    except DesignError:
+        return chain
+    values = {key: getattr(setting, attr) for key, attr in THERMAL_RESOLVED.items()
+              if getattr(chain, key) is None}
+    sources = {**dict(chain.sources), **{key: setting.sources[key] for key in values}}
+    return replace(chain, **values, sources=tuple(sources.items()))
 
 
 def span_terms_per_K(setting: ThermalSetting, chain: ReadoutChain) -> dict[str, float]:

@@ -1102,6 +1102,12 @@ def check_comb_columns(columns: int, room: Any, base: Mapping[str, Any], targets
         return
     paste = (most_comb_columns(room, base, targets, grade, process) if columns > hi else
              {"option": f"--columns {lo}", "words": "the nearest count a monolithic comb takes"})
+    held = int(paste["option"].removeprefix("--columns "))
+    if columns > hi and held < hi:  # the pocket binds before the grid's range: its count
+        raise DesignError("--columns", columns,
+                          f"{lo} ... {held} for a monolithic comb in this jaw's pocket",
+                          f"the pocket holds no longer comb; {COMB_COLUMNS_WHY} is {lo} ... "
+                          f"{hi}", alternatives=[paste])
     raise DesignError("--columns", columns, f"{lo} ... {hi} for a monolithic comb",
                       COMB_COLUMNS_WHY, alternatives=[paste])
 

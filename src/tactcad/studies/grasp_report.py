@@ -121,6 +121,7 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
     from tactcad.in_use.grasp_experiment import (default_jaw, grasp, kobj_range_warning,
                                                  overload_warning, overloaded_sites,
                                                  result_with_kobj_range, tissue_base_of)
+    from tactcad.in_use.jaw_kinematics import check_angle_deg
     from tactcad.in_use.shaft_leads import leads_check
     from tactcad.mechanics.evaluation import ladder_stiffness_by_element
     from tactcad.mechanics.readout_chain import readout_chain, row_units
@@ -129,6 +130,12 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
     if asked.force_N is not None and asked.angle_deg is not None:
         raise DesignError("force_N", asked.force_N, "a grasp force or a closing angle, not "
                           f"both (the angle {asked.angle_deg:g} degrees is given too)")
+    # the jaw and the closing angle asked are checked before any model runs: a refused
+    # option then says no model's warnings
+    jaw = default_jaw(plan, asked.pivot_mm, asked.pin_to_tip_mm, asked.opening_deg,
+                      asked.slab_thickness_mm)
+    if asked.angle_deg is not None:
+        check_angle_deg(jaw, asked.angle_deg)
     req = requirements_of(plan)
     rated = float(req.full_scale_force_N)
     lo, hi = req.kobj_range_N_per_mm
@@ -144,8 +151,6 @@ def grasp_record(plan, asked: GraspAsked) -> dict:
     units = [(r.number, m.number) for r, m in row_units(plan, by_part)]
     stated = stated_grasper(plan) is not None
     unused = "grasper_jaw" in plan.raw and not stated
-    jaw = default_jaw(plan, asked.pivot_mm, asked.pin_to_tip_mm, asked.opening_deg,
-                      asked.slab_thickness_mm)
     base = tissue_base_of(plan)
 
     def closed(**how: Any):

@@ -24,15 +24,22 @@ def readout_record(plan, model: str = "closed-form",
         progress: told what is solved (None: nothing).
 
     Returns:
-        The report (``as_json()`` is ``tactcad readout --json``).
+        The report (``as_json()`` is ``tactcad readout --json``), its chain's thermal keys
+        resolved as ``tactcad thermal`` resolves them
+        (:func:`tactcad.mechanics.thermal_drift.with_thermal_values`).
 
     Raises:
         UnknownModelError: ``model`` is not a ladder level.
     """
+    from dataclasses import replace
+
     from tactcad.mechanics.readout_chain import readout_report
+    from tactcad.mechanics.thermal_drift import with_thermal_values
     from tactcad.studies.verification import requirements_of
 
-    return readout_report(plan, requirements_of(plan), model, progress or (lambda s: None))
+    report = readout_report(plan, requirements_of(plan), model, progress or (lambda s: None))
+    # the thermal keys a design leaves unstated, as `thermal` resolves them: one key, one value
+    return replace(report, chain=with_thermal_values(plan, report.chain))
 
 
 def thermal_record(plan, model: str = "closed-form", element: int | None = None) -> Any:

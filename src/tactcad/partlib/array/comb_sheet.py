@@ -62,10 +62,12 @@ class CombSection(Section):
     #: each element's stop travel at its arm's free end (element order); left
     #: out: the process's minimum slot for every element
     stop_gaps_mm: listing(number(0.0, MAX_STOP_GAP_MM, lo_open=True), 2, MAX_COMB_ELEMENTS,
-                          "one gap per element (mm), rows x columns") = None
+                          f"one gap per element, each > 0 ... {MAX_STOP_GAP_MM:g} mm, rows x "
+                          "columns") = None
     #: each element's web (element order); left out: ``element.web_thickness_mm``
     web_thicknesses_mm: listing(number(*WEB_RANGE_MM, why=FITTED_DOMAIN), 2, MAX_COMB_ELEMENTS,
-                                "one web per element (mm), rows x columns") = None
+                                f"one web per element, each {WEB_RANGE_MM[0]:g} ... "
+                                f"{WEB_RANGE_MM[1]:g} mm, rows x columns") = None
     #: how the spacer is cut (:data:`tactcad.vocabulary.process.CUT_PROCESSES`); left out:
     #: the first process whose sheet range holds the spacer's thickness (wire EDM from
     #: 0.5 mm, laser cutting below)
