@@ -1384,13 +1384,14 @@ def check_group_summary(results: list) -> dict:
         results: the group's :class:`~tactcad.checks.check_result.CheckResult`.
 
     Returns:
-        ``passed`` (how many passed), ``undecided`` and ``failed`` (each one's line, as
-        ``check`` prints it).
+        ``passed`` and ``info`` (how many passed, how many were reported, not judged),
+        ``undecided`` and ``failed`` (each one's line, as ``check`` prints it).
     """
     from tactcad.checks.check_result import status_of
 
     found = [(status_of(r), r.line()) for r in results]
     return {"passed": sum(status == "pass" for status, _ in found),
+            "info": sum(status == "info" for status, _ in found),
             "undecided": [line for status, line in found if status == "undecided"],
             "failed": [line for status, line in found if status == "fail"]}
 
@@ -1450,7 +1451,8 @@ def print_jaw_report(r: dict) -> None:
     for label, c in r["checks"].items():
         print(f"  check {label}: " + counts_text({"passed": c["passed"],
                                                   "undecided": len(c["undecided"]),
-                                                  "failed": len(c["failed"])}))
+                                                  "failed": len(c["failed"]),
+                                                  "info": c.get("info", 0)}))
         for line in c["failed"] + c["undecided"]:  # as check prints them
             print(f"    {line}")
 
