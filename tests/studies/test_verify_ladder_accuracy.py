@@ -337,6 +337,36 @@ def test_a_level_an_open_full_scale_force_climbs_to_solves_its_peak_stress(monke
         assert asked[level]["prefetched_stress"] is True, level
 
 
+def test_a_level_whose_stresses_are_unread_solves_no_grid_strain_sequence(plan, monkeypatch):
+    # a level climbed for K_r/K_m alone read each element's grid strain at the level: at
+    # fem3d a face-strain sequence of every element (the check of a random design solved
+    # two beside the K it climbed for); the closed form's stands for it, read by no record
+    from tactcad.mechanics import readout_chain
+    from tactcad.mechanics.ladder import is_meshed
+    from tactcad.studies import verification as v
+
+    meshed = []
+    real = readout_chain.grid_strain_per_N
+
+    def asked(g, material, chain, model):
+        meshed.append(model) if is_meshed(model) else None
+        return real(g, material, chain, model)
+
+    monkeypatch.setattr(readout_chain, "grid_strain_per_N", asked)
+    fig = v.element_figures(plan, "fem2d", stress=v.unread_stress)
+    units = v.sensing_units(plan, fig)  # the K_obj units' force resolutions alike
+    assert v.figures_limits(plan, fig)  # and the gauge limits
+    assert meshed == []
+    assert fig.grids_from == "closed-form" and all(dF > 0 for dF in units.force_resolution_N.values())
+    assert set(fig.stresses) == set(plan.distinct_elements)
+    for name, es in fig.stresses.items():
+        assert es.model == "fem2d" and es.grid_strain_per_N > 0, name
+    # a level that reads its stresses still reads the grid strain at the level
+    fig = v.element_figures(plan, "fem2d", stress=lambda g, m, model: v.unread_stress(g, m, model))
+    v.sensing_units(plan, fig)
+    assert fig.grids_from is None and set(meshed) == {"fem2d"}
+
+
 @pytest.mark.slow  # fem2d solves of four elements
 def test_k_r_over_k_m_climbing_alone_gives_the_records_the_full_matrix_gives(tmp_path,
                                                                              monkeypatch):

@@ -502,20 +502,34 @@ def strength_record(element: int, g: ElementGeometry, material: Material,
         warnings=tuple(warn))
 
 
-def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan) -> ElementStress:
+def at_the_grid(es: ElementStress, g: ElementGeometry, plan: Plan,
+                level: str | None = None) -> ElementStress:
     """``es`` with the strain per newton the plan's gauge grid reads on ``g`` at
-    ``es.model`` (:func:`tactcad.mechanics.readout_chain.grid_strain_per_N`'s
+    ``level`` (:func:`tactcad.mechanics.readout_chain.grid_strain_per_N`'s
     ``grid``: the mean strain on the grid's plane over the grid) as its
     ``grid_strain_per_N``: strength, the hard stops and the read-out then quote one
-    gauge strain. Unsigned (1/N)."""
+    gauge strain. Unsigned (1/N).
+
+    Args:
+        es: the element's stress figures (MPa/N, N/mm).
+        g: the element (mm). plan: the design (its read-out chain and material).
+        level: the ladder level the grid strain is read at; None: ``es.model``. A level
+            whose figures no open requirement reads passes "closed-form"
+            (:func:`tactcad.studies.verification.unread_at_the_grid`): no mesh sequence
+            is solved for them.
+
+    Returns:
+        ``es`` with ``grid_strain_per_N`` set (1/N).
+    """
     from tactcad.mechanics.readout_chain import (grid_strain_per_N, readout_chain,
                                                  unmeshed_grid_strain_per_N)
 
+    level = es.model if level is None else level
     chain = readout_chain(plan)
-    if not is_meshed(es.model):  # a pure function of its inputs: read once per process
+    if not is_meshed(level):  # a pure function of its inputs: read once per process
         return replace(es, grid_strain_per_N=unmeshed_grid_strain_per_N(
-            g, plan.material, chain, es.model))
-    grid = grid_strain_per_N(g, plan.material, chain, es.model)["grid"]
+            g, plan.material, chain, level))
+    grid = grid_strain_per_N(g, plan.material, chain, level)["grid"]
     return replace(es, grid_strain_per_N=abs(float(grid)))
 
 

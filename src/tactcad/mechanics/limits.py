@@ -110,8 +110,8 @@ def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel:
     return out
 
 
-def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=None
-                ) -> list[ForceLimit]:
+def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=None,
+                grid_level: str | None = None) -> list[ForceLimit]:
     """Every limit of every element of ``plan`` at ``model`` (distinct geometries once).
 
     Args:
@@ -119,6 +119,10 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
             error estimate already computed (else computed here: closed form
             and beam only; the FEM levels' stresses come from
             :mod:`tactcad.studies.strength_studies`).
+        grid_level: the level the grid strain is read at (:func:`~tactcad.mechanics.
+            element_strength.at_the_grid`); None: each stress's own. A verification level
+            whose limits no open requirement reads passes "closed-form"
+            (:attr:`tactcad.studies.verification.Figures.grids_from`).
 
     Raises:
         DesignError: the material has no yield strength.
@@ -147,7 +151,7 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         # read once per part and geometry: at_the_grid sets the grid strain from g alone,
         # so reading it again on the same g gives the same stress
         if graded.get(g.part_name) != g:
-            stresses[g.part_name] = at_the_grid(stresses[g.part_name], g, plan)
+            stresses[g.part_name] = at_the_grid(stresses[g.part_name], g, plan, grid_level)
             graded[g.part_name] = g
         if g.part_name not in k_errors:
             k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \

@@ -121,6 +121,14 @@ class Figures:
     #: per part whose figures a lower level made (kept by :func:`verification_auto`), that
     #: level; a part not listed was solved at ``model``
     kept_from: dict[str, str] = field(default_factory=dict)
+    #: the level every part's grid strain and force resolution are read at when no open
+    #: requirement reads them (:func:`unread_stress`: the closed form's, so the level solves
+    #: no face-strain sequence for them); None: each part's own level (:meth:`level_of`)
+    grids_from: str | None = None
+
+    def grid_level_of(self, part: str) -> str:
+        """The level whose grid strain and force resolution part ``part`` reads."""
+        return self.grids_from or self.level_of(part)
 
     def k_of(self, number: int) -> float:
         return self.k[self.by_element[number]]
@@ -177,16 +185,20 @@ def element_figures(plan: Plan, model: str = "closed-form",
         opts = {"progress": progress} if progress and is_meshed(model) else {}
         r = estimate(model, g, plan.material, **opts)
         k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
-        # the gauge strain the grid reads (strength, limits and read-out quote one)
-        st[name] = at_the_grid(element_stress(g, plan.material, model), g, plan)
+        # the gauge strain the grid reads (strength, limits and read-out quote one); a level
+        # whose stresses no open requirement reads solves no mesh sequence for it either
+        es = element_stress(g, plan.material, model)
+        st[name] = unread_at_the_grid(es, g, plan) if element_stress is unread_stress \
+            else at_the_grid(es, g, plan)
     return Figures(model, k, k_err, st, {s.number: s.geometry.part_name for s in plan.slots},
-                   kept_from)
+                   kept_from, "closed-form" if element_stress is unread_stress else None)
 
 
 def figures_limits(plan: Plan, fig: Figures) -> list:
     """Every force limit of every element (:func:`tactcad.mechanics.limits.plan_limits`),
     each part's at the level whose figures it carries (:meth:`Figures.level_of`: a part
-    kept from a lower level keeps that level's limits and errors), in the plan's order.
+    kept from a lower level keeps that level's limits and errors), in the plan's order; with
+    :attr:`Figures.grids_from` set, every gauge limit on the grid strain read there.
 
     Args:
         plan: the design. fig: its figures (N/mm, relative errors, stresses per N).
@@ -199,6 +211,12 @@ def figures_limits(plan: Plan, fig: Figures) -> list:
     """
     from tactcad.mechanics.limits import plan_limits
 
+    if fig.grids_from is not None:  # read by no open requirement: nothing solved, nor said
+        import warnings
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return plan_limits(plan, fig.model, fig.stresses, fig.k_error, fig.grids_from)
     levels = {fig.level_of(part) for part in plan.distinct_elements}
     if levels == {fig.model}:
         return plan_limits(plan, fig.model, fig.stresses, fig.k_error)
@@ -415,7 +433,9 @@ def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
     strain off its own solves) and the largest error of those grid strains. A part whose
     figures were kept from a lower level (:attr:`Figures.kept_from`) has its force
     resolution read at that level too, beside the K it carries from there: the level does
-    not solve it (at fem3d two mesh sequences a part, the bare and the layered element).
+    not solve it (at fem3d two mesh sequences a part, the bare and the layered element);
+    a level whose stresses no open requirement reads (:attr:`Figures.grids_from`) reads
+    every part's at the closed form.
 
     Raises:
         UnknownModelError: ``fig.model`` is not a ladder level.
@@ -424,8 +444,8 @@ def sensing_units(plan: Plan, fig: Figures) -> SensingUnits:
     from tactcad.mechanics.resolution import ReadUnit
 
     reads = {}
-    for level in dict.fromkeys(fig.level_of(part) for part in plan.distinct_elements):
-        parts = [part for part in plan.distinct_elements if fig.level_of(part) == level]
+    for level in dict.fromkeys(fig.grid_level_of(part) for part in plan.distinct_elements):
+        parts = [part for part in plan.distinct_elements if fig.grid_level_of(part) == level]
         reads.update(force_resolution_reads(plan, level, parts=parts))
     read, errors, strain_errors = [], [], [0.0]
     for ref, meas in row_units(plan, fig.k):
@@ -1700,7 +1720,9 @@ def unread_stress(g: ElementGeometry, material: Material, model: str) -> Any:
     reads (:func:`reads_k_alone`): the closed form's formula on the level's K
     (:func:`tactcad.mechanics.element_strength.closed_form_stress`), so no peak-stress
     sequence is solved; the records made from it were decided below and are not kept, so
-    its warnings (a K_t fit range) are not said.
+    its warnings (a K_t fit range) are not said. :func:`element_figures` reads its grid
+    strain at the closed form too (:func:`unread_at_the_grid`): no face-strain sequence
+    is solved at the level.
 
     Args:
         g: the element (mm). material: its material. model: the level (its K is read).
@@ -1715,6 +1737,30 @@ def unread_stress(g: ElementGeometry, material: Material, model: str) -> Any:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return closed_form_stress(g, material, model)
+
+
+def unread_at_the_grid(es: Any, g: ElementGeometry, plan: Plan) -> Any:
+    """:func:`unread_stress`'s figures with the grid strain the closed form reads
+    (:func:`tactcad.mechanics.element_strength.at_the_grid` at "closed-form"): no
+    face-strain mesh sequence is solved for a level whose stresses no open requirement
+    reads, and, as :func:`unread_stress`, its warnings are not said (the closed form's
+    level said them).
+
+    Args:
+        es: :func:`unread_stress`'s figures (MPa/N, N/mm). g: the element (mm).
+        plan: the design (its read-out chain).
+
+    Returns:
+        The :class:`~tactcad.mechanics.element_strength.ElementStress` with its
+        ``grid_strain_per_N`` (1/N).
+    """
+    import warnings
+
+    from tactcad.mechanics.element_strength import at_the_grid
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return at_the_grid(es, g, plan, "closed-form")
 
 
 def less_accurate(record: dict, than: dict) -> bool:
