@@ -37,7 +37,9 @@ def test_a_footprint_smaller_than_the_plain_design_is_met_by_another_sheet(plan)
     assert d.data["requirements"]["footprint_mm"] == list(footprint)
     records = {r["requirement"]: r for r in verification_matrix(d.plan, envelope_mm=env)}
     assert records["footprint_mm"]["verdict"] == "pass"
-    assert all(r["pass"] for r in records.values()), records
+    # every judged row passes; the K band the design states none for is reported only
+    assert {k: r["verdict"] for k, r in records.items() if r["verdict"] != "pass"} == {
+        "k_tolerance_rel": "info", "k_tolerance_rel_toleranced": "info"}, records
 
 
 @pytest.mark.slow  # a whole design search

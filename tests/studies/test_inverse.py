@@ -23,6 +23,9 @@ from tactcad.mechanics.element_strength import strength_summary
 
 FEASIBLE = Targets(3.0, (5.0, 20.0), 0.3)
 
+#: The K band rows a design writes no requirement for: reported, not judged (INFO).
+UNSTATED_K_BAND = ("k_tolerance_rel", "k_tolerance_rel_toleranced")
+
 
 def _k(plan, element):
     return estimate("closed-form", plan.element(element).geometry, plan.material).stiffness_N_per_mm
@@ -260,7 +263,9 @@ def test_by_default_the_written_design_is_checked_as_verify_checks_it(tmp_path, 
     assert (v["asked"], v["level"], v["passed"]) == ("auto", "closed-form", True)
     assert [q["requirement"] for q in v["requirements"]] == \
         [m["requirement"] for m in report["margins"]]
-    assert all(m["verdict"] == "pass" for m in report["margins"])
+    # every judged margin passes; the K band the design states none for is reported only
+    assert {m["requirement"]: m["verdict"] for m in report["margins"]
+            if m["verdict"] != "pass"} == dict.fromkeys(UNSTATED_K_BAND, "info")
     assert set(report["K_r_over_K_m"]) == {"closed-form"} and report["K_r_over_K_m"][
         "closed-form"] > 0
     assert set(solved) == {"closed-form"}
