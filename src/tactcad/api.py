@@ -1672,6 +1672,12 @@ class Verification:
         return [r["requirement"] for r in self.records if r["verdict"] == "undecided"]
 
     @property
+    def info(self) -> list[str]:
+        """The requirements reported, not judged (verdict ``info``: the design file states
+        no value for them, so no target, margin or pass; ``check`` counts them apart)."""
+        return [r["requirement"] for r in self.records if r["verdict"] == "info"]
+
+    @property
     def seconds(self) -> float:
         """Wall time of the levels run (s)."""
         return sum(level["seconds"] for level in self.levels)

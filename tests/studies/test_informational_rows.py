@@ -163,3 +163,12 @@ def test_a_derived_resolution_stopped_at_the_largest_a_design_may_state_stays_ju
     written = informational_requirements(req(0.02, frozenset({"kobj_resolution_rel",
                                                               "k_tolerance_rel"})))
     assert written == frozenset()
+
+
+def test_the_apis_verification_lists_the_info_rows_apart_from_the_judged(tmp_path):
+    import tactcad
+
+    v = tactcad.load(MACRO).verify(model="closed-form", cache=tmp_path / "store")
+    assert sorted(v.info) == sorted(UNSTATED)
+    assert not set(v.info) & set(v.failed + v.undecided)
+    assert v.passed == (not v.failed)
