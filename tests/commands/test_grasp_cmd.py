@@ -225,6 +225,24 @@ def test_the_options_earlier_name_is_refused_with_its_new_one():
     assert "unrecognized" not in r.stderr and "Traceback" not in r.stderr
 
 
+def test_an_earlier_names_value_is_pasted_as_one_shell_word_on_one_line():
+    """A value with a newline or a space (drawn by the options' property test) was pasted
+    raw: the refusal broke over two lines and the paste was two words."""
+    import argparse
+    import shlex
+
+    from tactcad.commands.options import renamed_option
+
+    parse = renamed_option("--jaw-length-mm", "--pin-to-tip-mm", "pin to tip")
+    for value in ("\n", "3 0", "30"):
+        with pytest.raises(argparse.ArgumentTypeError) as exc:
+            parse(value)
+        message = str(exc.value)
+        assert "\n" not in message, message
+        pasted = message.split("give --pin-to-tip-mm ", 1)[1]
+        assert len(shlex.split(pasted)) == 1, message
+
+
 def test_a_grasp_past_the_overload_limit_is_warned_its_readings_marked_and_it_fails():
     """At 5 N the stacked example's elements 2, 3, 5, 6 pass their overload limit: the grasp
     said so in a warning naming the force and the sites, gave no K_obj from their units (in

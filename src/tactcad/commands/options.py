@@ -43,10 +43,20 @@ def renamed_option(old: str, new: str, meaning: str) -> Callable[[str], Any]:
         argparse.ArgumentTypeError: always.
     """
     def parse(text: str) -> Any:
+        # the value pasted shell-quoted: a drawn or pasted one may hold spaces or newlines
         raise argparse.ArgumentTypeError(f"{text[:40]!r}: {old} is now {new} ({meaning}); "
-                                         f"give {new} {text[:40]}")
+                                         f"give {new} {pasted_value(text[:40])}")
 
     return parse
+
+
+def pasted_value(text: str) -> str:
+    """``text`` as one shell word on one line: quoted where it needs it (:func:`shlex.quote`),
+    its control characters (a newline, a tab) written as Python escapes."""
+    import shlex
+
+    one_line = text if text.isprintable() else repr(text)[1:-1]
+    return shlex.quote(one_line)
 
 
 class RenamedOption(argparse.Action):
