@@ -477,6 +477,7 @@ def test_check_reuses_a_current_export_and_leaves_a_hand_edit(tmp_path, verified
     assert proc.returncode == 0 and report["reused_export"] and report["failed"] == 0
     # a requirement the design does not state is reported, not judged: counted apart
     assert report["passed"] + report["undecided"] + report["info"] == len(report["checks"]) > 0
+    assert all((c["passed"] is None) == (c["status"] == "info") for c in report["checks"])
 
     # an export of another design: its clamp plates thinner, its elements the default's, so
     # its check reads their fem3d solves from the verified store (a thinner web made a new

@@ -120,6 +120,12 @@ def test_drawn_command_lines_end_in_a_known_exit_code_without_traceback(
      "argument --columns: '\uff12': allowed an integer 1 ... "),
     (["tolerance", "--samples", "\uff15"], "argument --samples: '\uff15': allowed an integer"),
     (["lumped", "--unit", "\uff13"], "argument --unit: invalid int value: '\uff13'"),
+    (["design", "--full-scale-force", "\uff10.\uff12"],
+     "argument --full-scale-force: '\uff10.\uff12': allowed a number"),
+    (["lumped", "--km", "\uff13", "--kr", "9", "--r", "2"],
+     "argument --km: invalid float value: '\uff13'"),
+    (["calibrate", "--data", "x.csv", "--gain", "\uff13"],
+     "argument --gain: invalid float value: '\uff13'"),
 ])
 def test_bad_option_values_are_refused_naming_the_option(argv, needle, capsys, tmp_path):
     (tmp_path / "x.csv").write_text("element,run,z_um,force_N,signal_V\n")

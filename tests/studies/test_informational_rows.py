@@ -90,6 +90,17 @@ def test_check_reports_info_neither_passed_nor_failed_and_junit_skips_it(records
                       .removeprefix("window.TACTCAD_CHECKS = ").rstrip().rstrip(";"))
     assert page["info"] == 3 and page["passed"] == counts["passed"]
     assert [c["status"] for c in page["checks"]][:3] == ["info"] * 3
+    # neither passed nor failed: the page's rows say so as verify's JSON does
+    assert [c["passed"] for c in page["checks"]][:3] == [None] * 3
+    assert page["checks"][3]["passed"] is (judged != "fail")
+
+
+def test_check_json_rows_reported_not_judged_have_passed_null():
+    from tactcad.checks.check_result import CheckResult, reported_passed
+
+    assert reported_passed(CheckResult("requirement", "k_tolerance_rel", True, info=True)) is None
+    assert reported_passed(CheckResult("requirement", "kr_over_km", True, undecided=True))
+    assert reported_passed(CheckResult("requirement", "kr_over_km", False)) is False
 
 
 def test_check_failures_only_leaves_info_out():

@@ -63,6 +63,20 @@ def counts_text(counts: dict[str, int]) -> str:
     return f"{counts['passed']} passed, {open_}{counts['failed']} failed{info}"
 
 
+def reported_passed(result) -> bool | None:
+    """``passed`` as a report writes it: ``None`` for an ``info`` result (reported, not
+    judged: neither passed nor failed, as a verification row of verdict ``info`` says
+    ``"pass": null``), the result's own ``passed`` otherwise.
+
+    Args:
+        result: anything with ``passed`` and, optionally, ``undecided`` and ``info``.
+
+    Returns:
+        ``True``, ``False`` or ``None``.
+    """
+    return None if status_of(result) == "info" else bool(result.passed)
+
+
 def status_of(result) -> str:
     """``pass``, ``fail``, ``undecided`` or ``info`` of a check result (anything with
     ``passed`` and, optionally, ``undecided`` and ``info``)."""

@@ -10,7 +10,7 @@ from typing import Iterable
 
 from tactcad.atomic import write_bytes_atomic
 from tactcad.checks import groups as check_groups
-from tactcad.checks.check_result import status_of
+from tactcad.checks.check_result import reported_passed, status_of
 from tactcad.export.review_page import CHECKS_SCRIPT, REVIEW_PAGE, json_in_html
 
 
@@ -35,7 +35,7 @@ def checks_script(design_sha256: str, groups: Iterable[tuple[str, Iterable]]) ->
         except KeyError:
             name = label
         checks += [{"group": name, "label": label, "check": r.check, "subject": r.subject,
-                    "passed": bool(r.passed), "status": status_of(r), "detail": r.detail}
+                    "passed": reported_passed(r), "status": status_of(r), "detail": r.detail}
                    for r in results]
     statuses = [c["status"] for c in checks]
     doc = {"design_sha256": design_sha256, "passed": statuses.count("pass"),

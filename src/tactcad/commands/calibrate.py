@@ -53,8 +53,8 @@ FLAT_OPTIONS = frozenset({"flat", "encoding", "contact_um"})
 def register(subparsers) -> None:
     """Add the ``calibrate`` sub-command."""
     from tactcad.commands import add_cache_args, add_design_arg, add_output_args
-    from tactcad.commands.options import (PLOT_SUFFIXES, count, keep_option_defaults, number,
-                                          output_file)
+    from tactcad.commands.options import (PLOT_SUFFIXES, ascii_float, count,
+                                          keep_option_defaults, number, output_file)
 
     p = subparsers.add_parser(
         "calibrate", help="fit K, K_v, V0 from calibration readings and audit them against the design",
@@ -95,7 +95,7 @@ def register(subparsers) -> None:
                         "--map force_N=Dev1/ai0,signal_V=Dev1/ai1; TDMS channels as group/channel")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help="ladder level for the as-built web and gauge strain (default closed-form)")
-    p.add_argument("--gain", type=float, default=None, metavar="V_PER_STRAIN",
+    p.add_argument("--gain", type=ascii_float, default=None, metavar="V_PER_STRAIN",
                    help="gauge gain of the simulated rig (V per unit strain of the grid's "
                         "strain, as the audit fits G); default: the design's [readout] chain's, "
                         "as tactcad readout")

@@ -6,7 +6,7 @@ import argparse
 import time
 
 from tactcad.commands.options import output_file, output_folder
-from tactcad.checks.check_result import counts_text, status_counts, status_of
+from tactcad.checks.check_result import counts_text, reported_passed, status_counts, status_of
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, progress_from_args,
                               load_from_args, refuse_unknown_scenes)
 from tactcad.commands.finite_json import dumps
@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(dumps({"out": args.out, "reused_export": result.reused_export,
                      "export_refusal": result.export_refusal, **counts, "junit": args.junit,
-                     "checks": [{"check": r.check, "subject": r.subject, "passed": r.passed,
+                     "checks": [{"check": r.check, "subject": r.subject, "passed": reported_passed(r),
                                  "status": status_of(r), "detail": r.detail} for r in result.results
                                 if not (status_of(r) in SHOWN_IN_FULL_ONLY
                                         and args.failures_only)]}, indent=1))

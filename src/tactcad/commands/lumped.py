@@ -16,7 +16,7 @@ from tactcad.commands.finite_json import dumps
 from tactcad.errors import DesignError, TactcadError
 
 from tactcad.commands import add_design_arg, add_output_args
-from tactcad.commands.options import ascii_integer, number
+from tactcad.commands.options import ascii_float, ascii_integer, number
 
 
 #: The option that gives each of the lumped model's inputs (its refusals name it).
@@ -34,19 +34,19 @@ def register(subparsers) -> None:
                     "K_obj = (K_r - R K_m)/(R - 1). Also prints the sensitivity dK_obj/dR "
                     "and, with --sigma-r, the first-order uncertainty of K_obj. "
                     "Domain: 0 < K_m < K_r, K_obj > 0, 1 < R < K_r/K_m.")
-    p.add_argument("--km", type=float, default=None, metavar="N_PER_MM",
+    p.add_argument("--km", type=ascii_float, default=None, metavar="N_PER_MM",
                    help="measuring-element stiffness K_m (N/mm); default: the design's (a "
                         "project's, --design's or the DESIGN word's), as tactcad stiffness "
                         "gives it at closed-form")
-    p.add_argument("--kr", type=float, default=None, metavar="N_PER_MM",
+    p.add_argument("--kr", type=ascii_float, default=None, metavar="N_PER_MM",
                    help="reference-element stiffness K_r (N/mm), > K_m; default: the "
                         "design's, as --km")
     given = p.add_mutually_exclusive_group(required=True)
-    given.add_argument("--kobj", type=float, metavar="N_PER_MM",
+    given.add_argument("--kobj", type=ascii_float, metavar="N_PER_MM",
                        help="object stiffness K_obj (N/mm): print R")
-    given.add_argument("--r", type=float, metavar="R",
+    given.add_argument("--r", type=ascii_float, metavar="R",
                        help="measured deflection ratio R (dimensionless): print K_obj")
-    p.add_argument("--sigma-r", type=float, default=None, metavar="SIGMA",
+    p.add_argument("--sigma-r", type=ascii_float, default=None, metavar="SIGMA",
                    help="standard uncertainty of R: print sigma of K_obj (first order)")
     p.add_argument("--coupled-design", metavar="DESIGN.toml", default=None,
                    help="also the coupled form beside eq. 2-3: every tip of this design on one "
@@ -66,7 +66,7 @@ def register(subparsers) -> None:
     p.add_argument("--contact-um", type=number(0, 1e4, "um"), default=0.0, metavar="UM",
                    help="with --flat: a step counts where every element's deflection exceeds "
                         "this (um, default 0), as tactcad calibrate --flat")
-    p.add_argument("--force-r", type=float, metavar="N", default=None,
+    p.add_argument("--force-r", type=ascii_float, metavar="N", default=None,
                    help="with --flat: the reference element's force at the reading (N, its "
                         "calibrated K_r times its deflection): a height offset is a length, so "
                         "its effect on R depends on how far the elements deflect")

@@ -129,7 +129,7 @@ def number(lo: float | None = None, hi: float | None = None, unit: str = "", *,
 
     def parse(text: str) -> float:
         try:
-            x = float(text)
+            x = ascii_float(text)
         except (TypeError, ValueError):
             raise argparse.ArgumentTypeError(f"{text[:40]!r}: allowed {allowed}") from None
         if not math.isfinite(x) or (lo is not None and (x <= lo if lo_open else x < lo)) \
@@ -160,6 +160,27 @@ def ascii_integer(text: str) -> int:
 
 
 ascii_integer.__name__ = "int"  # argparse names the type in its own messages
+
+
+def ascii_float(text: str) -> float:
+    """An option's number, in ASCII as a design file's TOML takes it (``float`` alone reads
+    any script's digits: a full-width ``０.５`` as 0.5, which ``--set`` refuses).
+
+    Args:
+        text: the option's value.
+
+    Returns:
+        The number (``nan`` and ``inf`` included: a caller bounds it).
+
+    Raises:
+        ValueError: not a number, or a character outside ASCII in it.
+    """
+    if not isinstance(text, str) or not text.isascii():
+        raise ValueError(f"{text!r} is no number in ASCII digits")
+    return float(text)
+
+
+ascii_float.__name__ = "float"  # argparse names the type in its own messages
 
 
 def count(lo: int = 0, hi: int = 2**31 - 1, what: str = "") -> Callable[[str], int]:
