@@ -916,6 +916,32 @@ def test_the_dies_name_stays_on_its_carrier_or_is_led_to_it_clear_of_the_outline
     assert not failed, failed
 
 
+def test_the_dies_sheet_has_a_title_block_whose_long_name_stays_in_its_cells(tmp_path):
+    # the sheet had only a line of text in its corner: no drawing number, no design digest,
+    # no date; a name of 64 characters must stay in its cells (the arrays' sheets do)
+    import xml.etree.ElementTree as ET
+    from dataclasses import replace
+
+    from tactcad.checks.sheet_overlap import sheet_file_results
+    from tactcad.products.silicon_die.design.die_mount import die_mount
+    from tactcad.products.silicon_die.drawings.die_sheet import die_sheet
+
+    base = md.die_plan(Targets(10.0, (0.5, 5.0), 0.009), jaw_room("5"), columns=5)
+    for name in ("d", "lab_die_" + "w" * 56):
+        plan = replace(base, name=name)
+        path = tmp_path / f"{len(name)}.svg"
+        path.write_text(die_sheet(plan, die_mount(plan, {"shaft_class_mm": "5"})).svg(),
+                        encoding="utf-8")
+        texts = {el.get("id"): el.text for el in
+                 ET.parse(path).iter("{http://www.w3.org/2000/svg}text") if el.get("id")}
+        for cell in ("tb-part", "tb-scale", "tb-design", "tb-number", "tb-version", "tb-date"):
+            assert texts.get(cell), (name, cell)
+        design = texts["tb-design"] + " " + texts.get("tb-design-2", "")  # set on two lines
+        assert "sha256" in design and texts["tb-scale"].startswith("die ")
+        failed = [r.line() for r in sheet_file_results(path) if not r.passed]
+        assert not failed, failed
+
+
 # --- a die's folder: export and check, and the array commands' refusal ----------------------
 def test_array_commands_refuse_a_die_design_naming_the_die_command(tmp_path):
     # in a die's folder, `export` silently made the paper's array (the folder "held no
