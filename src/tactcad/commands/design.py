@@ -773,10 +773,8 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
         DesignError: an option a die does not take (:data:`DIE_IGNORES`), or the die's own
             refusal (what binds, with a K_obj range to paste).
     """
-    import re
-
     from tactcad.atomic import write_bytes_atomic
-    from tactcad.products.silicon_die.design.die_file import die_file_text
+    from tactcad.products.silicon_die.design.die_file import die_file_text, suggested_cell_name
     from tactcad.products.silicon_die.design.mems_die import COLUMNS_RANGE as DIE_COLUMNS
     from tactcad.products.silicon_die.design.mems_die import DEFAULT_COLUMNS
     from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
@@ -786,12 +784,11 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
         option, why = next(iter(ignored.items()))
         raise DesignError(option, getattr(args, DIE_IGNORES[option][0]),
                           "only for a metal construction", why)
-    name = re.sub(r"[^A-Za-z0-9_]", "_", path.stem)
-    name = name if re.match(r"[A-Za-z]", name) else f"die_{name}"
+    name = suggested_cell_name(path.stem)  # the folder's name, as a GDS cell takes it
     columns = args.columns or DEFAULT_COLUMNS
     check_columns(columns, DIE_COLUMNS, "a silicon die", "each unit pairs a reference beam "
                   "with a measuring beam along the die (die.columns)")
-    plan = doped_die_plan(targets, room, columns=columns, name=name[:32])
+    plan = doped_die_plan(targets, room, columns=columns, name=name)
     jaw, jaw_file = jaw_of(args.jaw)
     from tactcad.products.silicon_die.design.die_mount import die_mount
 
