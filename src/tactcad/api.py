@@ -936,6 +936,7 @@ class Project:
         from tactcad.assembly.rig_models import get_scene_spec
         from tactcad.checks.groups import CheckContext, groups_to_run, run_groups
         from tactcad.export.reuse import reuse_state
+        from tactcad.export.export_owner import default_product_name, refuse_another_designs_export
         from tactcad.export.run import check_out_dir, export, export_scenes
         from tactcad.export.selection import with_progress
         from tactcad.store import keeping_results
@@ -956,6 +957,8 @@ class Project:
         if out is not None and reuse_state(self.plan, Path(out), self.validated).refusal \
                 is not None:
             check_out_dir(out)  # a folder no export can be written to: refused before any solve
+            if not scenes:  # nor one holding another design's export, which export refuses
+                refuse_another_designs_export(Path(out), default_product_name(), self.plan.name)
         # what reads the design alone (the verification matrix) runs before any export
         with keeping_results(_store(cache)):
             run_groups([g for g in to_run if not g.on_export], context, done)

@@ -64,3 +64,23 @@ def test_a_dies_export_refuses_an_arrays_export_folder(tmp_path):
     r = run_cli("export", "--out", "exports", cwd=tmp_path)
     assert r.returncode == 2 and "metal-array macro_array" in r.stderr, r.stderr
     assert sorted(p.name for p in array.iterdir()) == ["a.txt", "manifest.json"]
+
+
+def test_check_refuses_another_designs_export_before_saying_it_exports_there(tmp_path,
+                                                                            capsys):
+    # check's help said such a folder "is exported there first"; it printed "exporting to
+    # ... first" and then failed with export's refusal: it refuses at once, as export does
+    (tmp_path / DIE_EXAMPLE.name).write_bytes(DIE_EXAMPLE.read_bytes())
+    _fake_export(tmp_path / "comb", "comb10", None)
+    (tmp_path / "arr").mkdir()
+    array = _fake_export(tmp_path / "arr" / "exports", "grasper_jaw_5mm_mems", "silicon-die")
+    for cwd, out in ((tmp_path, "comb"), (tmp_path / "arr", "exports")):
+        r = run_cli("check", "--out", out, cwd=cwd)
+        assert r.returncode == 2 and "holds the export of the" in r.stderr, r.stderr
+        assert "exporting to" not in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert sorted(p.name for p in array.iterdir()) == ["a.txt", "manifest.json"]
+    from tactcad.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["check", "--help"])
+    assert "another design's export is refused" in " ".join(capsys.readouterr().out.split())

@@ -901,6 +901,8 @@ def die_check(design: Path, args: argparse.Namespace,
                    + (f" ({len(state.edited)} file(s) changed or removed by hand since)"
                       if state.edited else " (same design, every file as listed)"))
         else:  # as an array's check does: exported there first, said in one line
+            if args.out:  # another design's export is refused as export refuses it
+                refuse_a_foreign_folder(out, name)
             report(f"exporting to {out} first: {refusal}" if args.out else
                    f"exporting to the temporary folder {out} first (no --out)")
             quiet = argparse.Namespace(**{**vars(args), "json": True})
