@@ -64,6 +64,12 @@ def test_the_grasper_case_gives_a_comb_that_fits_reaches_the_ratio_and_stops_in_
 
     said = found.data["assumptions"]["material.grade"]
     assert material_grade(TI).source("youngs_modulus_MPa") in said and TI in said
+    # the webs' reason gives the K_m every command reports (the webs rounded to 1 um), not
+    # only the one it solved for
+    webs = found.data["assumptions"]["comb.web_thicknesses_mm"]
+    reference, measuring = plan.unit_pairs[0]
+    assert (f"as written K_m = {k[measuring]:.4g} N/mm, "
+            f"K_r/K_m = {k[reference] / k[measuring]:.4g}") in webs, webs
 
 
 @pytest.mark.parametrize("columns", [2, 3, 5, 6])
