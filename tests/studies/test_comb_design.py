@@ -848,3 +848,87 @@ def test_the_refusal_offers_the_grade_with_the_most_margin_not_the_first_in_the_
     assert (lighter.grade, lighter.force_N) == (none, None)
     assert comb_design.best_grade({first: (-0.5, 1.0), best: (-0.2, 1.6)}).grade == best
     assert comb_design.best_grade({}) == (None, None, "")
+
+
+def test_tables_a_refusals_search_knows_refused_are_refused_and_not_validated(monkeypatch):
+    """The tables :func:`candidate_carries` leaves unvalidated (a notch below a web, stops
+    surely set past the tables' range, a stop gap past it) are refused when validated, and
+    the refusal's search of other column counts, finding no count that carries (so meeting
+    every candidate), validates none of them."""
+    from tactcad.studies import comb_design
+    from tactcad.studies.design_atlas import tissue_default
+
+    # an atlas point (seed 0) whose eight columns carry at no other count
+    targets = Targets(26.2328, (0.946799, 15.7359), 2.51819, tissue=tissue_default())
+    columns = 8
+    base, room = comb_design.searched_base(BASE, columns), jaw_room("10")
+    validated, known, bounded, skipped = [], [], [], []
+    real = comb_design.plan_from_dict
+    monkeypatch.setattr(comb_design, "plan_from_dict",
+                        lambda d, *a, **k: validated.append(copy_of(d)) or real(d, *a, **k))
+    with comb_design.web_solves_kept(), comb_design.candidates_weighed():
+        assert not comb_design.fewer_columns_carry(base, columns, room, targets, TI,
+                                                   array_envelope_mm)
+        searched = list(validated)  # what the search validated (not the walk below)
+        for count in sum(comb_design.other_column_counts(columns), ()):
+            for sheet in comb_design.sheets_of(base):
+                for scale in comb_design.stop_fitting_scales(targets):
+                    refused, webbed, _ = comb_design.webbed_candidate(
+                        base, sheet, scale, count, room, targets, TI)
+                    if refused is not None:
+                        continue
+                    webbed_d = comb_design.webbed_tables(webbed.tables, webbed.webs, count)
+                    if comb_design.notch_below_a_web(webbed.tables, webbed.webs):
+                        known.append(webbed_d)
+                        continue
+                    past = comb_design.stops_past_the_tables(webbed)
+                    bounded += [past]
+                    _, d = comb_design.stopped_candidate(webbed)
+                    if past:  # refused before its stops, or a gap past the range
+                        assert d is None or comb_design.stop_gap_too_wide(d)
+                        known.append(webbed_d if d is None else d)
+                        skipped.append(webbed_d)  # not planned either
+                    elif d is not None and comb_design.stop_gap_too_wide(d):
+                        known.append(d)
+    assert known and searched and any(bounded)
+    keys = {comb_design.exact_key(d) for d in searched}
+    assert [d for d in known + skipped if comb_design.exact_key(d) in keys] == []
+    for d in known:
+        with pytest.raises(DesignError):
+            real(d)
+
+
+def copy_of(d: dict) -> dict:
+    from tactcad.vocabulary.schema import copy_tables
+
+    return copy_tables(d)
+
+
+def test_a_candidate_refused_with_its_stops_is_validated_once(monkeypatch):
+    """A candidate whose tables are refused once its stops are set is judged from the
+    refusal its plan already met: its tables are validated once, and the candidate is the
+    one judging them afresh gives."""
+    from tactcad.studies import comb_design
+
+    targets, columns = WIDE_GAPS[2], 2
+    base, room = comb_design.searched_base(BASE, columns), jaw_room("10")
+    with comb_design.web_solves_kept(), comb_design.candidates_weighed():
+        for sheet in comb_design.sheets_of(base):
+            refused, webbed, _ = comb_design.webbed_candidate(
+                base, sheet, comb_design.KM_SCALES[-1], columns, room, targets, TI)
+            if refused is None:
+                _, d = comb_design.stopped_candidate(webbed)
+                if d is not None and comb_design.stop_gap_too_wide(d):
+                    break
+        else:
+            pytest.fail("no candidate with a stop gap past the tables")
+        fresh = comb_design.judged_candidate(d, webbed.sheet_mm, webbed.km_scale,
+                                             array_envelope_mm, webbed.room)
+        counted = []
+        real = comb_design.plan_from_dict
+        monkeypatch.setattr(comb_design, "plan_from_dict",
+                            lambda t, *a, **k: counted.append(t is d) or real(t, *a, **k))
+        monkeypatch.setattr(comb_design, "stopped_candidate", lambda w: (None, d))
+        weighed = comb_design.weighed_candidate(None, webbed, array_envelope_mm)
+    assert counted == [True]
+    assert weighed == fresh and weighed.plan is None and weighed.failures

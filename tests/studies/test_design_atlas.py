@@ -467,3 +467,39 @@ def test_a_die_points_max_force_is_the_largest_rating_strength_reports_on_its_fi
     assert tactcad.load(written).strength()["largest_rating_N"] == strength["largest_rating_N"]
     assert strength["largest_rating_N"] < strength["largest_rating_nominal_N"]
     assert record["max_force_N"] >= record["full_scale_force_N"]
+
+
+def test_a_feasible_combs_figures_read_from_its_search_are_the_written_designs(monkeypatch):
+    """The figures of a feasible comb read from its chosen candidate's verification matrix
+    (its search worked it out) are those the written design's own matrix gives, and the
+    written design's matrix is not worked out again."""
+    from tactcad.studies import verification
+    from tactcad.studies.comb_design import (candidates_weighed, comb_of_candidates,
+                                             first_preferred)
+    from tactcad.studies.design_atlas import plan_figures, targets_of
+
+    atlas = jaw_atlas("10", [(COMB, "Ti-6Al-4V-annealed")])
+    point = {"point": 0, "kr_over_km": 21.267, "kobj_lo_N_per_mm": 2.87533,
+             "kobj_hi_N_per_mm": 18.4831, "full_scale_force_N": 0.12, "columns": 2}
+    targets = targets_of(point)
+    with candidates_weighed():
+        best = first_preferred(targets, atlas.room, 2, atlas.comb_base, grade=COMB_TI,
+                               envelope_of=atlas.envelope_of)
+        assert best is not None and best.predicted
+        design = comb_of_candidates([best], targets, atlas.room, 2,
+                                    envelope_of=atlas.envelope_of, fastener_reasons=False)
+    assert design.chosen is not None and design.chosen.predicted
+    fresh = plan_figures(design.plan, atlas.envelope_of)
+    judged = []  # the names of the plans whose matrix is worked out
+    matrix = verification.verification_matrix
+    monkeypatch.setattr(verification, "verification_matrix",
+                        lambda plan, *a, **k: judged.append(plan.name) or matrix(plan, *a, **k))
+    read = plan_figures(design.plan, atlas.envelope_of, design.chosen.predicted)
+    assert read == fresh and judged == []
+    record = evaluate_batch(atlas, [point])[0]
+    assert record["feasible"] and {k: record[k] for k in fresh} == fresh
+    # the candidates' matrices alone: not the written design's (its name)
+    assert judged and design.plan.name not in judged
+
+
+COMB_TI = "Ti-6Al-4V-annealed"

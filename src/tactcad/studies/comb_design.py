@@ -48,7 +48,7 @@ import threading
 from collections import OrderedDict
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import PurePath
 from typing import Any, Callable, Iterator, Mapping, NamedTuple
 
@@ -100,6 +100,9 @@ class CombCandidate:
     #: (:func:`sketched_candidate`): its margin and rating are its judgement's, its
     #: failures only the force
     sketched: bool = False
+    #: requirement -> its predicted figure in the candidate's closed-form verification
+    #: matrix (:func:`judge_recorded`), where it was judged in full; None otherwise
+    predicted: Mapping[str, Any] | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -162,6 +165,8 @@ class CombDesign:
     room: Any
     candidates: tuple[CombCandidate, ...]
     fasteners: tuple[FastenerTry, ...] = ()
+    #: the candidate written (its fasteners chosen), before its name and reasons
+    chosen: CombCandidate | None = None
 
 
 @dataclass(frozen=True)
@@ -812,15 +817,35 @@ def judge_unless_too_tall(d: dict, envelope_of: Callable | None, room: Any = Non
         (plan, failures, full-scale-force margin, rated force N); for a plan too tall,
         (the plan, the height's failure, -inf, None).
     """
-    try:
-        plan = plan_from_dict(d)
-    except DesignErrors as exc:
-        return None, refused_fields(exc)[0], -math.inf, None
-    tall = too_tall(plan, room) if room is not None else ()
-    if tall:
-        return plan, tall, -math.inf, None
-    plan, fails, _, margin, rated, _ = judge_bounded(d, envelope_of, room, plan)
-    return plan, fails, margin, rated
+    return pair_judged(d, envelope_of, room, first_failure=False)[:4]
+
+
+def pair_judged(d: dict, envelope_of: Callable | None, room: Any = None,
+                first_failure: bool = True
+                ) -> tuple[Any, tuple[str, ...], float, float | None,
+                           Mapping[str, Any] | None]:
+    """:func:`judge` (``first_failure``) or :func:`judge_unless_too_tall` (not), with what
+    the plan's verification matrix predicts where it was worked out.
+
+    Args:
+        d, envelope_of, room: as :func:`judge`. first_failure: False: a plan taller than
+            ``room`` is refused by its height alone (:func:`judge_unless_too_tall`).
+
+    Returns:
+        (plan, failures, full-scale-force margin, rated force N, predicted figures by
+        requirement or None: as :func:`judge_recorded`).
+    """
+    plan = None
+    if not first_failure:
+        try:
+            plan = plan_from_dict(d)
+        except DesignErrors as exc:
+            return None, refused_fields(exc)[0], -math.inf, None, None
+        tall = too_tall(plan, room) if room is not None else ()
+        if tall:
+            return plan, tall, -math.inf, None, None
+    plan, fails, _, margin, rated, _, predicted = judge_recorded(d, envelope_of, room, plan)
+    return plan, fails, margin, rated, predicted
 
 
 def refused_fields(exc: DesignErrors) -> tuple[tuple[str, ...], tuple[str, ...]]:
@@ -843,7 +868,8 @@ def judge_limits(d: dict, envelope_of: Callable | None, room: Any = None
 
 
 def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
-                  plan: Any = None, limits: list | None = None
+                  plan: Any = None, limits: list | None = None,
+                  refusal: DesignErrors | None = None
                   ) -> tuple[Any, tuple[str, ...], tuple[str, ...], float, float | None,
                              ForceBound | None]:
     """:func:`judge_limits`' answer and the candidate's :class:`ForceBound` (None when the
@@ -853,10 +879,34 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
         d: the candidate's tables (webs and stops set). envelope_of, room: as
             :func:`judge_limits`. plan, limits: ``d``'s plan and its closed-form limits
             where already worked out (:func:`planned_limits`), else worked out here.
+        refusal: where ``plan`` is None, the refusal :func:`plan_from_dict` gave ``d``
+            already (:func:`planned`): read, not worked out again.
 
     Returns:
         (plan, failures, limit codes, full-scale-force margin, rated force N, bound).
     """
+    return judge_recorded(d, envelope_of, room, plan, limits, refusal)[:6]
+
+
+def judge_recorded(d: dict, envelope_of: Callable | None, room: Any = None,
+                   plan: Any = None, limits: list | None = None,
+                   refusal: DesignErrors | None = None
+                   ) -> tuple[Any, tuple[str, ...], tuple[str, ...], float, float | None,
+                              ForceBound | None, dict[str, Any] | None]:
+    """:func:`judge_bounded`'s answer and what the plan's closed-form verification matrix
+    predicts (requirement -> its ``predicted``), so that the comb written from these
+    tables (their name and reasons alone changed: no figure reads them) reads its figures
+    rather than working the matrix out again.
+
+    Args:
+        d, envelope_of, room, plan, limits, refusal: as :func:`judge_bounded`.
+
+    Returns:
+        (plan, failures, limit codes, full-scale-force margin, rated force N, bound,
+        predicted figures by requirement; None where the plan or its matrix is refused).
+    """
+    if plan is None and refusal is not None:
+        return (None, *refused_fields(refusal), -math.inf, None, None, None)
     from tactcad.mechanics.hard_stops import stop_verdicts
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits, uncleared_gauge_limits
     from tactcad.studies.verification import verification_matrix
@@ -866,13 +916,13 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
     try:
         plan = plan if plan is not None else plan_from_dict(d)
     except DesignErrors as exc:
-        return (None, *refused_fields(exc), -math.inf, None, None)
+        return (None, *refused_fields(exc), -math.inf, None, None, None)
     env = envelope_of(plan) if envelope_of is not None else None
     try:
         # the verdicts alone: the K band a candidate states none of is reported, not judged
         records = verification_matrix(plan, "closed-form", envelope_mm=env, reported=False)
     except DesignErrors as exc:  # a table the plan holds refuses it (the jaw's, say)
-        return (None, *refused_fields(exc), -math.inf, None, None)
+        return (None, *refused_fields(exc), -math.inf, None, None, None)
     failed = [r for r in records if r["verdict"] == "fail" or nominally_short(r)]
     fails = [failure_line(r) for r in failed]
     codes = [requirement_limit(r["requirement"]) for r in failed]
@@ -894,7 +944,7 @@ def judge_bounded(d: dict, envelope_of: Callable | None, room: Any = None,
                   0.0)
     bound = force_bound(records, limits)
     return (plan, tuple(fails), tuple(codes), float(margin if margin is not None else 0.0),
-            rated_force_N(d, bound), bound)
+            rated_force_N(d, bound), bound, {r["requirement"]: r["predicted"] for r in records})
 
 
 def nominally_short(record: dict) -> bool:
@@ -1265,11 +1315,11 @@ def weighed_candidate(refused: CombCandidate | None, webbed: WebbedCandidate | N
     c, d = stopped_candidate(webbed)
     if c is not None:
         return c
-    plan, limits = planned_limits(d)
+    plan, limits, refusal = planned(d)
     if limits is not None and short_of_margin(d, limits):
         return (d, webbed.sheet_mm, webbed.km_scale, webbed.room, plan, limits)
     return judged_candidate(d, webbed.sheet_mm, webbed.km_scale, envelope_of, webbed.room,
-                            plan, limits)
+                            plan, limits, refusal)
 
 
 def limits_bound(limits: list) -> ForceBound:
@@ -1413,7 +1463,7 @@ def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, 
         best, fasteners = with_fasteners(first, room, envelope_of,
                                          first_failure=fastener_reasons)
     data = named(best.data, name, targets, room, best, columns, fasteners)
-    return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners)
+    return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners, best)
 
 
 def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, room: Any,
@@ -1486,15 +1536,106 @@ def candidate_carries(base: dict, sheet: float, km_scale: float, columns: int, r
                                            grade)
     d = None
     if refused is None:
+        if notch_below_a_web(webbed.tables, webbed.webs) or stops_past_the_tables(webbed):
+            return False  # its plan refused before or with its stops: no plan, no rating
         refused, d = stopped_candidate(webbed)
     if refused is not None:
         return bool((refused.plan is not None and not refused.failures)
                     or refused.rated_force_N)
-    plan, limits = planned_limits(d)
+    if stop_gap_too_wide(d):
+        return False  # refused with its stops set, as judged: no plan, no rating
+    plan, limits, _ = planned(d)
+    if plan is None:
+        return False  # judged, the same refusal: no plan, no rating
     if limits and rated_by_limits(d, limits):
         return True
     c = judged_candidate(d, sheet, km_scale, envelope_of, at, plan, limits)
     return bool((c.plan is not None and not c.failures) or c.rated_force_N)
+
+
+def notch_below_a_web(tables: Mapping[str, Any], webs: tuple[float, float]) -> bool:
+    """Whether a comb's tables with ``webs`` (:func:`webbed_tables`) are surely refused by
+    their notch: the comb's rule R >= every web (t/R <= 1,
+    :func:`tactcad.design.comb_plan.validate_tables`' element check, whose least R is at
+    least the thickest web, less its tolerance
+    :data:`~tactcad.vocabulary.schema.LIMIT_TOLERANCE_MM`). Where the tables pass no
+    further (their types, web source or lists), they are refused before it: refused
+    either way. A necessary condition of the refusal, not its words.
+
+    Args:
+        tables: the sheet's comb tables (their ``[element] notch_radius_mm``, mm).
+        webs: (the references' web, the measuring elements' web) (mm).
+
+    Returns:
+        True only when the tables with those webs are refused.
+    """
+    from tactcad.vocabulary.schema import LIMIT_TOLERANCE_MM
+
+    radius = (tables.get("element") or {}).get("notch_radius_mm")
+    if isinstance(radius, bool) or not isinstance(radius, (int, float)) \
+            or not math.isfinite(radius):
+        return False  # judged as the search judges it
+    return radius < max(webs) - LIMIT_TOLERANCE_MM
+
+
+def stops_past_the_tables(w: WebbedCandidate) -> bool:
+    """Whether a candidate with its webs solved surely sets a stop gap past
+    :data:`~tactcad.design.comb_plan.MAX_STOP_GAP_MM` (:func:`with_stops`), before its
+    tables are planned: the gap it sets is at least the rated tip deflection F / K times
+    the stop's lever over the arm (:func:`tactcad.mechanics.hard_stops.stop_gap_for` at an
+    engagement of at least the rating,
+    :func:`~tactcad.mechanics.hard_stops.engagement_force_N`, rounded up), K the element's
+    closed-form K with its solved web (:func:`closed_form_k`, the strength record's to the
+    bit) and the lever the starting plan's (the arm plus half the tip: no web or gap moves
+    it). Such tables are refused with their stops set, or before if their webs are: either
+    way no plan and no rating. Past the range by :data:`STOP_BOUND_SLACK_REL` at least.
+
+    Args:
+        w: the candidate (:func:`webbed_candidate`; its full-scale force in N).
+
+    Returns:
+        True only when some element's gap surely exceeds the tables' range.
+    """
+    from tactcad.design.comb_plan import MAX_STOP_GAP_MM
+
+    plan, force = w.start, w.targets.full_scale_force_N
+    if plan.material.yield_strength_MPa is None:
+        return False  # setting its stops refuses the material: as the search does
+    levers = {stop.element: stop.lever_mm for stop in plan.hard_stops}
+    for number, web in ((1, w.webs[0]), (plan.columns + 1, w.webs[1])):
+        g = replace(plan.element(number).geometry, web_thickness_mm=web)
+        try:
+            k = closed_form_k(g, plan.material)
+        except ValueError:
+            return False  # judged as the search judges it
+        if number not in levers or not (math.isfinite(k) and k > 0):
+            return False
+        least = force / k * levers[number] / g.arm_length_mm
+        if least > MAX_STOP_GAP_MM * (1.0 + STOP_BOUND_SLACK_REL):
+            return True
+    return False
+
+
+#: How far (relative) :func:`stops_past_the_tables`' least gap must pass the tables' range:
+#: a thousand times the drift of a closed-form K between its two ways of working it out.
+STOP_BOUND_SLACK_REL = 1e-6
+
+
+def stop_gap_too_wide(d: Mapping[str, Any]) -> bool:
+    """Whether a candidate's tables with their stops set (:func:`with_stops`) are surely
+    refused by a stop gap: one above :data:`~tactcad.design.comb_plan.MAX_STOP_GAP_MM`,
+    the most ``[comb] stop_gaps_mm`` takes (its field's closed upper bound).
+
+    Args:
+        d: the tables (their stop gaps, mm).
+
+    Returns:
+        True only when a gap is wider than the tables take.
+    """
+    from tactcad.design.comb_plan import MAX_STOP_GAP_MM
+
+    gaps = (d.get("comb") or {}).get("stop_gaps_mm") or ()
+    return any(isinstance(g, float) and g > MAX_STOP_GAP_MM for g in gaps)
 
 
 def rated_by_limits(d: dict, limits: list) -> bool:
@@ -1736,7 +1877,9 @@ def surviving(good: list[CombCandidate], grasp_N: float, room: Any,
         d = grasped_tables(c.data, grasp_N, room)
         plan, fails, codes, margin, rated = judge_limits(d, envelope_of, room)
         if plan is not None and not fails:
-            return replace(c, data=d, plan=plan, force_margin_rel=margin, rated_force_N=rated)
+            # the grasp's tables: not those its figures were predicted for
+            return replace(c, data=d, plan=plan, force_margin_rel=margin, rated_force_N=rated,
+                           predicted=None)
         nearest = nearest or (fails, codes)
     fails, codes = nearest or (("?",), ())
     lo, hi = targets.k_obj_range_N_per_mm
@@ -1833,21 +1976,24 @@ def candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any
 
 
 def judged_candidate(d: dict, sheet: float, km_scale: float, envelope_of: Callable | None,
-                     room: Any, plan: Any = None, limits: list | None = None) -> CombCandidate:
+                     room: Any, plan: Any = None, limits: list | None = None,
+                     refusal: DesignErrors | None = None) -> CombCandidate:
     """A candidate whose tables ``d`` (webs and stops set, :func:`prepared_candidate`) are
     judged (:func:`judge_bounded`) on a ``sheet`` (mm) at ``km_scale``.
 
     Args:
         d: the tables. sheet: the sheet (mm). km_scale: K_m over eq. 2's centre.
-        envelope_of, room: as :func:`judge_limits`. plan, limits: ``d``'s plan and
-            closed-form limits where already worked out (:func:`planned_limits`).
+        envelope_of, room: as :func:`judge_limits`. plan, limits, refusal: ``d``'s plan,
+            closed-form limits and plan's refusal where already worked out
+            (:func:`planned`).
 
     Returns:
         The :class:`CombCandidate`.
     """
-    plan, fails, codes, margin, rated, bound = judge_bounded(d, envelope_of, room, plan,
-                                                             limits)
-    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, codes, bound)
+    plan, fails, codes, margin, rated, bound, predicted = judge_recorded(
+        d, envelope_of, room, plan, limits, refusal)
+    return CombCandidate(sheet, km_scale, d, plan, fails, margin, rated, codes, bound,
+                         predicted=predicted)
 
 
 def prepared_candidate(base: dict, sheet: float, km_scale: float, columns: int, room: Any,
@@ -2052,16 +2198,30 @@ def planned_limits(d: dict) -> tuple[Any, list | None]:
         (plan, limits); (None, None) when the plan is refused, (plan, None) when its
         limits are (the judgement says why).
     """
+    return planned(d)[:2]
+
+
+def planned(d: dict) -> tuple[Any, list | None, DesignErrors | None]:
+    """:func:`planned_limits` with the plan's refusal, so that a judgement of the same
+    tables (:func:`judge_bounded`) reads it rather than validating them again.
+
+    Args:
+        d: the candidate's tables (webs and stops set).
+
+    Returns:
+        (plan, limits, refusal): (None, None, the refusal) when the plan is refused;
+        else as :func:`planned_limits` with None.
+    """
     from tactcad.mechanics.limits import plan_limits
 
     try:
         plan = plan_from_dict(d)
-    except DesignErrors:
-        return None, None
+    except DesignErrors as exc:
+        return None, None, exc
     try:
-        return plan, plan_limits(plan, "closed-form")
+        return plan, plan_limits(plan, "closed-form"), None
     except DesignError:
-        return plan, None
+        return plan, None, None
 
 
 def short_of_margin(d: dict, limits: list) -> bool:
@@ -2140,12 +2300,12 @@ def with_fasteners(best: CombCandidate, room: Any, envelope_of: Callable | None,
         if own:
             tried.append(FastenerTry(screw, dowel, ()))
             return best, tuple(tried)
-        plan, fails, margin, rated = judge(d, envelope_of, room) if first_failure else \
-            judge_unless_too_tall(d, envelope_of, room)
+        plan, fails, margin, rated, predicted = pair_judged(d, envelope_of, room,
+                                                            first_failure)
         tried.append(FastenerTry(screw, dowel, fails))
         if plan is not None and not fails:
             return replace(best, data=d, plan=plan, force_margin_rel=margin,
-                           rated_force_N=rated), tuple(tried)
+                           rated_force_N=rated, predicted=predicted), tuple(tried)
     return best, tuple(tried)
 
 

@@ -399,15 +399,22 @@ def searched_comb_figures(atlas: JawAtlas, grade: str, targets, columns: int) ->
     # the plan's figures read no reasons: a screw and dowel too tall is refused by its height
     design = comb_of_candidates(tried, targets, atlas.room, columns,
                                 envelope_of=atlas.envelope_of, fastener_reasons=False)
-    return plan_figures(design.plan, atlas.envelope_of) | {
+    # the written comb is the chosen candidate named and reasoned: its search's matrix holds
+    predicted = design.chosen.predicted if design.chosen is not None else None
+    return plan_figures(design.plan, atlas.envelope_of, predicted) | {
         "sheet_mm": float(design.data["sheet"]["thickness_mm"])}
 
 
-def plan_figures(plan, envelope_of: Callable | None) -> dict:
+def plan_figures(plan, envelope_of: Callable | None,
+                 predicted: Mapping[str, Any] | None = None) -> dict:
     """A metal plan's figures at the closed form.
 
     Args:
         plan: the comb's plan. envelope_of: plan -> its footprint envelope (mm).
+        predicted: requirement -> its predicted figure in the closed-form verification
+            matrix of tables the plan's differ from in their name and reasons alone (the
+            chosen candidate's, :attr:`tactcad.studies.comb_design.CombCandidate.predicted`),
+            where its search worked that matrix out; None: worked out here.
 
     Returns:
         ``kobj_resolution_rel`` and ``max_force_N`` (N) as its verification matrix predicts
@@ -421,10 +428,11 @@ def plan_figures(plan, envelope_of: Callable | None) -> dict:
     from tactcad.studies.project_reports import modes_record
     from tactcad.studies.verification import verification_matrix
 
-    env = envelope_of(plan) if envelope_of is not None else None
-    predicted = {r["requirement"]: r["predicted"]
-                 for r in verification_matrix(plan, "closed-form", envelope_mm=env,
-                                              reported=False)}
+    if predicted is None:
+        env = envelope_of(plan) if envelope_of is not None else None
+        predicted = {r["requirement"]: r["predicted"]
+                     for r in verification_matrix(plan, "closed-form", envelope_mm=env,
+                                                  reported=False)}
     lowest = modes_record(plan, "closed-form", modes=1)[0]["lowest_first_Hz"]
     return {"kobj_resolution_rel": float(predicted.get("kobj_resolution_rel", math.nan)),
             "max_force_N": float(predicted.get("full_scale_force_N", math.nan)),
