@@ -181,3 +181,24 @@ def test_a_stated_attach_is_the_one_the_die_rests_on_and_narrows_the_error(small
     thin = dx._solve(small_die, one_layer, assumed.modulus_MPa, footprints)[0]
     thick = dx._solve(thicker, one_layer, assumed.modulus_MPa, footprints)[0]
     assert np.abs(thick[off]).max() > np.abs(thin[off]).max()
+
+
+def test_a_windows_mean_strains_are_scikit_fems_interpolated_ones():
+    """:func:`mean_strains` sums every load's gradient at once: the same means as
+    scikit-fem's ``interpolate`` of each load's each component, on a box's top facets."""
+    import numpy as np
+    from skfem import ElementHex2, FacetBasis, MeshHex
+
+    from tactcad.products.silicon_die.mechanics.die_crosstalk import mean_strains
+
+    mesh = MeshHex.init_tensor(np.linspace(0, 1, 4), np.linspace(0, 0.5, 3),
+                               np.linspace(0, 0.2, 3))
+    fb = FacetBasis(mesh, ElementHex2(), facets=mesh.facets_satisfying(
+        lambda x: np.isclose(x[2], 0.2) & (x[0] < 0.7), boundaries_only=True), intorder=5)
+    u = np.random.default_rng(1).standard_normal((3 * fb.N, 4))
+    weights = fb.dx / np.sum(fb.dx)
+    for j in range(u.shape[1]):
+        grad = np.array([fb.interpolate(u[a::3, j]).grad for a in range(3)])
+        strain = 0.5 * (grad + np.swapaxes(grad, 0, 1))
+        expected = np.einsum("ijfq,fq->ij", strain, weights)
+        assert np.allclose(mean_strains(fb, u)[j], expected, rtol=1e-12, atol=1e-14)

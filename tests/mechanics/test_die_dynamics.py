@@ -212,3 +212,63 @@ def test_the_frame_gives_under_the_root_and_the_shorter_beam_loses_more(plan):
         clamped, _, _ = _solve(plan, beam, (6, 1, 1), frame=False)
         lost[beam.role] = 1 - on / clamped
     assert 0.0 < lost["measuring"] < lost["reference"] < 0.3, lost
+
+
+def test_the_mirrored_halves_give_the_whole_meshs_k_and_f1(plan):
+    """The beam, its post, its frame block, the load and silicon's tensor turned into the
+    beam's frame are each their own mirror image across y = 0, so on a mesh with a node
+    plane there the symmetric half's K and the lower of the two halves' first modes are the
+    whole mesh's to round-off: on its frame, and clamped where the beam is narrower than
+    thick, whose first mode is sideways (antisymmetric). A mesh without the plane (one cell
+    across the beam) and a crystal turned off its mirror are solved whole."""
+    from tactcad.products.silicon_die.mechanics import die_fem3d
+    from tactcad.vocabulary.crystal import SILICON
+
+    def turned(along, across):
+        return die_fem3d.stiffness_tensor(SILICON.in_frame(along, across))
+
+    assert die_fem3d.mirror_symmetric(turned((1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)))
+    assert not die_fem3d.mirror_symmetric(turned((1.0, 0.5, 0.0), (-0.5, 1.0, 0.0)))
+    beam = plan.beams[0]
+    assert die_fem3d.half_mesh(die_fem3d._mesh(plan, beam, (6, 2, 1), True)[0]) is not None
+    assert die_fem3d.half_mesh(die_fem3d._mesh(plan, beam, (6, 1, 1), True)[0]) is None
+    narrow = dataclasses.replace(beam, width_um=0.4 * beam.thickness_um)
+    for b, divisions, frame in ((beam, (6, 2, 1), True), (narrow, (8, 2, 2), False)):
+        whole = die_fem3d._solve(plan, b, divisions, frame, mirror=False)
+        halves = die_fem3d._solve(plan, b, divisions, frame)
+        assert halves[2] == whole[2]
+        assert halves[:2] == pytest.approx(whole[:2], rel=1e-8), (b.role, halves, whole)
+    # the narrow beam's first mode is sideways: the antisymmetric half's, below the
+    # symmetric half's (up and down), and the whole's
+    mesh, held = die_fem3d._mesh(plan, narrow, (8, 2, 2), False)
+    half, post = die_fem3d.half_mesh(mesh), die_fem3d.snapped_footprint(plan, narrow)
+    c = turned((1.0, 1.0, 0.0), (-1.0, 1.0, 0.0))
+    up = die_fem3d._solve_mesh(plan, narrow, post, half, held, c, (1,))[1]
+    sideways = die_fem3d._solve_mesh(plan, narrow, post, half, held, c, (0, 2))[1]
+    assert sideways < 0.5 * up and die_fem3d._hertz(sideways) == pytest.approx(whole[1], rel=1e-8)
+
+
+def test_the_anisotropic_assembly_keeps_its_triplets_indices_in_32_bits():
+    """The triplets' row and column indices are 32-bit (scipy's own for a matrix of this
+    size), not 64-bit ones copied down whole: at most 64 bytes a triplet at the peak
+    (8 of value, 4 + 4 of indices, the chunks and their concatenation and scipy's sum);
+    64-bit indices took 79."""
+    import tracemalloc
+
+    import numpy as np
+    from skfem import Basis, ElementHex2, MeshHex
+
+    from tactcad.products.silicon_die.mechanics.die_fem3d import assemble_anisotropic
+
+    mesh = MeshHex.init_tensor(np.linspace(0, 1, 9), np.linspace(0, 0.5, 5),
+                               np.linspace(0, 0.2, 3))
+    sb = Basis(mesh, ElementHex2(), intorder=5)
+    c = np.random.default_rng(0).standard_normal((3, 3, 3, 3))
+    tracemalloc.start()
+    try:
+        k = assemble_anisotropic(sb, c)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    triplets = mesh.nelements * (3 * sb.Nbfun) ** 2
+    assert k.shape == (3 * sb.N, 3 * sb.N) and peak < 64 * triplets, peak / triplets
