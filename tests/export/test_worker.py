@@ -48,9 +48,12 @@ SCRIPT = textwrap.dedent('''
         import time
         stamps = {}
 
-        def stamped(name, seconds=0.0):
+        def stamped(name, seconds=0.0, until=None):
             def make(run):
                 start = time.time()
+                (run.staging / f"{name}.begun").touch()
+                while until is not None and not (run.staging / until).exists():
+                    time.sleep(0.01)
                 time.sleep(seconds)
                 return [{"path": name, "part": name, "kind": "test", "pid": os.getpid(),
                          "start": start, "end": time.time()}]
@@ -61,10 +64,27 @@ SCRIPT = textwrap.dedent('''
         jobs = [Job("w0", "k0", stamped("w0"), worker=True),  # a worker is forked for 2 or more
                 Job("w1", "k1", stamped("w1", 1.5), worker=True),
                 Job("y", "ky", stamped("y"), after=("w1",), prepare=prepare),
-                Job("x", "kx", stamped("x"))]
+                # x lasts till the worker has begun w1, which it then keeps (a job not begun
+                # this process takes back when it waits)
+                Job("x", "kx", stamped("x", until="w1.begun"))]
         records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
         print(json.dumps({"records": records, **stamps}))
         sys.exit(0)
+    if sys.argv[2] == "takeback":  # this process waits for the worker, which has a queue
+        import time
+
+        def slept(name, seconds=0.0):
+            def make(run):
+                time.sleep(seconds)
+                (run.staging / name).write_text(name)
+                return [{"path": name, "part": name, "kind": "test", "pid": os.getpid()}]
+            return make
+        jobs = [Job("w0", "k0", slept("w0", 1.5), worker=True),
+                Job("w1", "k1", slept("w1"), worker=True),
+                Job("w2", "k2", slept("w2"), after=("w1",), worker=True),
+                Job("w3", "k3", slept("w3"), worker=True),
+                Job("w4", "k4", slept("w4"), worker=True),
+                Job("y", "ky", slept("y"), after=("w0",))]
     records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
     print(json.dumps({"main": main_pid, "ran": ran, "kernel": "OCP" in sys.modules,
                       "records": records,
@@ -104,6 +124,18 @@ def test_this_process_works_while_the_worker_makes_what_its_next_job_reads(tmp_p
     assert rec["w1"]["pid"] != rec["x"]["pid"] == rec["y"]["pid"]
     assert rec["x"]["end"] < rec["w1"]["end"]  # x did not wait behind y
     assert out["prepared"] < rec["w1"]["end"] <= rec["y"]["start"]
+
+
+@pytest.mark.slow
+def test_this_process_takes_back_the_workers_last_jobs_not_begun_while_it_waits(tmp_path):
+    """With nothing of its own to run, this process makes the worker's queued jobs from
+    the last one back, each read by no job left to the worker; the records keep job order."""
+    out = run_script(tmp_path, "takeback")
+    pids = {r["path"]: r["pid"] for r in out["records"]}
+    assert [r["path"] for r in out["records"]] == ["w0", "w1", "w2", "w3", "w4", "y"]
+    assert out["ran"] == 6
+    assert pids["w4"] == pids["w3"] == pids["y"] == out["main"]  # taken back, last first
+    assert out["files"] == {n: n for n in ("w0", "w1", "w2", "w3", "w4", "y")}
 
 
 @pytest.mark.slow

@@ -87,7 +87,11 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     they need are built first, once each. Jobs marked ``worker`` go to the
     run's second process (:mod:`tactcad.export.worker`): ``session``'s when
     given with the ``planner`` that made ``jobs`` (``planner(run)``, sent to
-    it), else one forked for this run when one can be.
+    it), else one forked for this run when one can be. When every job left here
+    waits for the forked worker's files, this process takes back the last job
+    handed to it that it has not begun and no job left to it reads
+    (:func:`_taken_back`), so both cores work until the end (``tactcad watch``'s
+    worker keeps its jobs: it keeps the solids it was handed).
 
     Each job run is kept in ``store`` as soon as it finishes (its entry written
     in one step, :meth:`~tactcad.store.Store.keep`; the worker keeps its own jobs
@@ -157,8 +161,12 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
         started = {job.name: job.start(run) for job in todo if job.start is not None}
         here = [job for job in todo if job.start is None and job.name not in futures]
         prepared: set[str] = set()
+        # a worker kept across runs (tactcad watch) keeps the solids it was handed: its jobs
+        # stay its own; a worker forked for this run may hand back what it has not begun
+        take_back = ((lambda: _taken_back(handed, futures, done)) if isinstance(worker, Worker)
+                     else None)
         while here:
-            job = _next_here(here, futures, done, run, prepared)
+            job = _next_here(here, futures, done, run, prepared, take_back)
             here.remove(job)
             collect_reads(job)
             finished(job.name, job.make(run))
@@ -183,9 +191,12 @@ def _waits(job: Job, futures: dict, done: dict) -> bool:
                for name in job.after)
 
 
-def _next_here(here: list[Job], futures: dict, done: dict, run: Run, prepared: set[str]) -> Job:
+def _next_here(here: list[Job], futures: dict, done: dict, run: Run, prepared: set[str],
+               take_back: Callable[[], Job | None] | None = None) -> Job:
     """The next job for this process: the first that waits for no worker file; if every
-    one waits, each job's ``prepare`` runs first (once), so the wait is spent on work."""
+    one waits, each job's ``prepare`` runs first (once), so the wait is spent on work;
+    if every one still waits, a job handed to the worker that it has not begun
+    (``take_back``, :func:`_taken_back`), added to ``here``, so both processes work."""
     ready = next((job for job in here if not _waits(job, futures, done)), None)
     if ready is not None:
         return ready
@@ -193,7 +204,37 @@ def _next_here(here: list[Job], futures: dict, done: dict, run: Run, prepared: s
         if job.prepare is not None and job.name not in prepared:
             prepared.add(job.name)
             job.prepare(run)
-    return next((job for job in here if not _waits(job, futures, done)), here[0])
+    ready = next((job for job in here if not _waits(job, futures, done)), None)
+    if ready is not None:
+        return ready
+    taken = take_back() if take_back is not None else None
+    if taken is not None:
+        here.append(taken)
+        return taken
+    return here[0]
+
+
+def _taken_back(handed: Sequence[Job], futures: dict, done: dict) -> Job | None:
+    """The last job handed to the worker that it has not begun, reads no file the worker
+    has still to make and is read by no other job the worker has yet to make, taken back
+    from it (its hand-over cancelled, removed from ``futures``) for this process to make
+    while it would otherwise wait; None when there is none.
+
+    Args:
+        handed: the jobs handed to the worker, in the order it makes them.
+        futures: the worker's pending results by job name (the taken job's is removed).
+        done: the records of the jobs finished so far, by job name.
+
+    Returns:
+        The job taken back, or None.
+    """
+    pending = [job for job in handed if job.name in futures and job.name not in done]
+    for job in reversed(pending):
+        read_later = any(job.name in other.after for other in pending if other is not job)
+        if not read_later and not _waits(job, futures, done) and futures[job.name].cancel():
+            del futures[job.name]
+            return job
+    return None
 
 
 def check_out_dir(out_dir: str | Path) -> Path:

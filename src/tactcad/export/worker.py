@@ -14,7 +14,11 @@ The worker inherits the run and its jobs; it builds no solid: this process
 builds each distinct part once and hands the worker the solids a job reads,
 pickled (OpenCascade's binary BREP). Jobs in the worker run one at a time,
 in the order they were handed over, so a job always finds the files of the
-jobs it reads (``after``) when those were handed over before it.
+jobs it reads (``after``) when those were handed over before it. The run's
+process, with nothing of its own left to make but jobs that read the
+worker's files, takes back the last of the worker's jobs not yet begun
+(:func:`tactcad.export.run.run_jobs`), so neither process waits while the
+other has a queue.
 
 ``tactcad watch`` keeps one worker for its whole session
 (:class:`SessionWorker`): started by the ``spawn`` method, so it does not
