@@ -20,13 +20,16 @@ from tactcad.version import VERSION
 
 
 def fake_export(folder: Path, design_sha256: str, files: dict[str, bytes],
-                inputs: dict | None = None) -> None:
-    """A folder whose manifest lists ``files`` (written with those bytes) for the design,
-    and ``inputs`` as the export's record of what it was made from where given."""
+                inputs: dict | None = None, name: str | None = None) -> None:
+    """A folder whose manifest lists ``files`` (written with those bytes) for the design
+    (named ``name`` where given: a folder holding another name's export is refused before
+    any export), and ``inputs`` as the export's record of what it was made from where
+    given."""
     for rel, data in files.items():
         (folder / rel).parent.mkdir(parents=True, exist_ok=True)
         (folder / rel).write_bytes(data)
-    man = {"design": {"sha256": design_sha256}, "tactcad_version": VERSION,
+    man = {"design": {"sha256": design_sha256, **({"name": name} if name else {})},
+           "tactcad_version": VERSION,
            "cad_stack": stack_versions(),
            "files": [{"path": rel, "sha256": file_sha256(folder / rel)} for rel in files]}
     if inputs is not None:
@@ -84,7 +87,7 @@ def test_check_leaves_a_hand_edit_as_it_is_and_fails_it(tmp_path, export_files_o
 def test_check_exports_again_only_for_another_design_or_no_export(tmp_path, export_files_only):
     project = tactcad.load()
     other = tmp_path / "other"
-    fake_export(other, "f" * 64, {"bom.csv": b"part,qty\n"})
+    fake_export(other, "f" * 64, {"bom.csv": b"part,qty\n"}, name=project.plan.name)
     with open(other / "bom.csv", "ab") as fh:
         fh.write(b"edited\n")
     report = project.check(other, cache=False)
@@ -119,7 +122,8 @@ def test_an_export_older_than_its_rigs_or_scenes_is_exported_again(
     design, rigs, scenes = project_folder
     project = tactcad.load(design)
     out = tmp_path / "ex"
-    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"}, inputs_of(project))
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"}, inputs_of(project),
+                name=project.plan.name)
     assert project.check(out, cache=False).reused_export and export_files_only == []
 
     edited(rigs, "height_mm = 220.0", "height_mm = 260.0")  # the column: the design stays
@@ -140,7 +144,8 @@ def test_an_export_that_records_no_inputs_is_exported_again(tmp_path, export_fil
     scenes: with nothing edited by hand it is written again, saying why."""
     project = tactcad.load()
     out = tmp_path / "ex"
-    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"})
+    fake_export(out, project.plan.design_hash, {"bom.csv": b"part,qty\n"},
+                name=project.plan.name)
     report = project.check(out, cache=False)
     assert export_files_only == [out]
     assert report.export_refusal.startswith("made without a record of its inputs")
