@@ -1646,8 +1646,10 @@ class Verification:
     Attributes:
         model: the level asked for (``auto`` or a ladder level).
         records: one dict per requirement, in the matrix's order.
-        levels: ``{"model", "seconds", "undecided_before", "elements_kept"}`` per level run
-            (``auto``; ``elements_kept``: the parts whose lower-level figures it kept).
+        levels: ``{"model", "seconds", "undecided_before", "elements_kept",
+            "stresses_kept"}`` per level run (``auto``; ``elements_kept``: the parts whose
+            lower-level figures it kept; ``stresses_kept``: those whose K it solved and
+            whose lower-level stresses it kept).
         requirements: the requirement values with their reasons.
         warnings: what the levels warned of, one line each (alike ones folded), as
             ``tactcad verify --json`` lists them.

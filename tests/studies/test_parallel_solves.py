@@ -112,6 +112,15 @@ def test_at_fem3d_the_peak_stress_sequences_go_to_the_processes_after_every_k(
         submitted.clear()
         solve_side_by_side("fem2d", elements, plan.material, peak_stress=True)
         assert [what for _, what, _ in submitted] == ["stiffness", "stiffness"]
+        # the stresses a verification keeps from below (strengths_decided_below): every K,
+        # the peak stress of the other element alone
+        submitted.clear(), lines.clear()
+        solve_side_by_side("fem3d", elements, plan.material, lines.append, peak_stress=True,
+                           stress_geometries=elements[1:])
+        assert submitted == [("fem3d", "stiffness", n) for n in names] + \
+            [("fem3d", "peak stress", names[1])]
+        assert lines == ["fem3d: 3 solves (the K of 2 elements, the peak stress of 1) side by "
+                         "side in 2 processes"]
 
 
 def test_a_processs_peak_stress_sequence_is_the_one_the_strength_study_reads(monkeypatch):

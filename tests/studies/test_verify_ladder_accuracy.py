@@ -293,7 +293,7 @@ def _stress_asked(monkeypatch, by_level):
 
     asked = {}
     monkeypatch.setattr(v, "prefetch_top_level",
-                        lambda plan, level, progress, peak_stress=False, parts=None:
+                        lambda plan, level, progress, peak_stress=False, parts=None, **_:
                         asked.setdefault(level, {}).update(prefetched_stress=peak_stress) or 0)
 
     def matrix(plan, level, progress, req, stress, envelope, **kept):
@@ -517,6 +517,52 @@ def test_an_open_requirement_reading_k_still_solves_every_element(tmp_path, monk
     assert {"kr_over_km", "full_scale_force_N"} <= set(spent[-1]["undecided_before"])
     assert spent[-1]["elements_kept"] == []
     assert {part for part, model in solved if model == "beam"} == set(plan.distinct_elements)
+
+
+@pytest.mark.slow  # fem2d solves of four elements
+def test_a_level_climbed_for_the_force_and_k_r_over_k_m_solves_only_the_open_stresses(
+        tmp_path, monkeypatch):
+    # seed 2003 of test_random_designs (design4of6): the closed form leaves K_r/K_m and the
+    # full-scale force open, the force by one element of four; every level above solved the
+    # peak stress of all four (at fem3d four bare mesh sequences beside the four K ones, in
+    # the check of that design), where K_r/K_m reads K alone and the three others' limits
+    # cleared the force below by their own error: each level solves every K and that one
+    # element's stress, with the verdicts every stress solved gives
+    from tactcad.store import Store, keeping_results
+    from tactcad.studies import verification as v
+
+    plan = _domain_plan(tmp_path, 2003)
+    levels = ("closed-form", "fem2d")
+    solved, asked, stress = _counting_solves(monkeypatch)
+    with keeping_results(Store(None)):
+        closed = v.verification_matrix(plan, "closed-form", stress=stress)
+        assert {r["requirement"] for r in closed if r["verdict"] == "undecided"
+                and not r["level_fixed"]} == {"full_scale_force_N", "kr_over_km"}
+        force = next(r for r in closed if r["requirement"] == "full_scale_force_N")
+        open_part = plan.slots[[s.number for s in plan.slots].index(
+            force["binding_element"])].geometry.part_name
+        del solved[:], asked[:]
+        records, spent = v.verification_auto(plan, stress=stress, levels=levels)
+        assert {part for part, model in solved if model == "fem2d"} == \
+            set(plan.distinct_elements)  # K_r/K_m reads every K at the level
+        assert {part for part, model in asked if model == "fem2d"} == {open_part}, asked
+        others = set(plan.distinct_elements) - {open_part}
+        assert spent[-1]["elements_kept"] == [] and set(spent[-1]["stresses_kept"]) == others
+        rec = next(r for r in records if r["requirement"] == "full_scale_force_N")
+        assert rec["element_levels"] == {**{p: "closed-form" for p in others},
+                                         open_part: "fem2d"}
+        # every stress solved at every level: the same verdicts, the same K_r/K_m record
+        monkeypatch.setattr(v, "strengths_decided_below", lambda *a, **k: frozenset())
+        del asked[:]
+        full, full_spent = v.verification_auto(plan, stress=stress, levels=levels)
+    assert {part for part, model in asked if model == "fem2d"} == set(plan.distinct_elements)
+    assert full_spent[-1]["stresses_kept"] == []
+    assert [(r["requirement"], r["verdict"], r["decided_by"]) for r in records] == \
+        [(r["requirement"], r["verdict"], r["decided_by"]) for r in full]
+    kr = [next(r for r in out if r["requirement"] == "kr_over_km") for out in (records, full)]
+    assert kr[0] == kr[1]
+    whole = next(r for r in full if r["requirement"] == "full_scale_force_N")
+    assert "element_levels" not in whole and rec["binding_element"] == whole["binding_element"]
 
 
 def test_elements_decided_below_keeps_the_elements_clearing_the_force_by_their_error():

@@ -88,7 +88,8 @@ def top_of_the_ladder(model: str) -> bool:
 
 
 def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
-                       progress=None, peak_stress: bool = False) -> int:
+                       progress=None, peak_stress: bool = False,
+                       stress_geometries: Sequence[Any] | None = None) -> int:
     """Solve ``geometries`` at ``model`` in up to as many processes as cores, into the
     active store; the number of processes used (0: nothing prefetched, see the module doc).
     A failed or killed process is not an error: its element is solved later, here.
@@ -99,6 +100,9 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
         peak_stress: also each element's peak-stress sequence (:data:`PEAK_STRESS`; fem3d
             only), which a verification at the level reads beside K: four solves of two
             elements share the cores where the two stress sequences ran in turn after.
+        stress_geometries: with ``peak_stress``, the elements whose peak-stress sequence
+            is solved (default all of ``geometries``; a verification keeps the lower
+            level's stresses of the elements decided there).
 
     Returns:
         The number of processes used.
@@ -115,7 +119,9 @@ def solve_side_by_side(model: str, geometries: Sequence[Any], material: Any,
             or os.environ.get("TACTCAD_WORKERS", "1") == "0"):  # one process asked for
         return 0
     whats = (STIFFNESS, PEAK_STRESS) if peak_stress and model == "fem3d" else (STIFFNESS,)
-    tasks = [(what, g) for what in whats for g in geometries
+    stressed = geometries if stress_geometries is None else stress_geometries
+    tasks = [(what, g) for what in whats
+             for g in (stressed if what == PEAK_STRESS else geometries)
              if not _kept(model, g, material, what)]  # every K first: the matrix reads K first
     if len(tasks) < 2:  # one left is solved here, as soon
         return 0
@@ -145,4 +151,8 @@ def solves_text(tasks: Sequence[tuple[str, Any]]) -> str:
     elements = len({id(g) for _, g in tasks})
     if all(what == STIFFNESS for what, _ in tasks):
         return f"{len(tasks)} elements solved"
-    return f"{len(tasks)} solves (the K and peak stress of {elements} elements)"
+    stressed = sum(what == PEAK_STRESS for what, _ in tasks)
+    if stressed * 2 == len(tasks):
+        return f"{len(tasks)} solves (the K and peak stress of {elements} elements)"
+    return (f"{len(tasks)} solves (the K of {len(tasks) - stressed} elements, the peak stress "
+            f"of {stressed})")

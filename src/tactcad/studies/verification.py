@@ -125,6 +125,15 @@ class Figures:
     #: requirement reads them (:func:`unread_stress`: the closed form's, so the level solves
     #: no face-strain sequence for them); None: each part's own level (:meth:`level_of`)
     grids_from: str | None = None
+    #: per part whose K was solved at ``model`` while its stresses (its force limits) were
+    #: kept from a lower level (listed in :attr:`kept_from`), that level's K error, which
+    #: its limits carry (:func:`strengths_decided_below`)
+    strength_k_error: dict[str, float] = field(default_factory=dict)
+
+    def limit_k_errors(self) -> dict[str, float]:
+        """Per part, the K error its force limits carry (relative): its own level's, or the
+        lower level's whose stresses it keeps (:attr:`strength_k_error`)."""
+        return {**self.k_error, **self.strength_k_error}
 
     def grid_level_of(self, part: str) -> str:
         """The level whose grid strain and force resolution part ``part`` reads."""
@@ -141,7 +150,7 @@ class Figures:
 def element_figures(plan: Plan, model: str = "closed-form",
                     progress: Callable[[str], None] | None = None,
                     stress: Callable | None = None, below: Figures | None = None,
-                    keep: Collection[str] = ()) -> Figures:
+                    keep: Collection[str] = (), keep_strength: Collection[str] = ()) -> Figures:
     """K (Richardson at FEM levels), its error estimate and the peak stress of
     every distinct element of ``plan`` at ``model``.
 
@@ -153,6 +162,11 @@ def element_figures(plan: Plan, model: str = "closed-form",
             N/mm, its error, the stress) and are not solved at ``model``
             (:attr:`Figures.kept_from` says which level made them).
         keep: part names kept from ``below`` (empty: every part solved at ``model``).
+        keep_strength: part names whose K (and its error) is solved at ``model`` while their
+            stresses are taken from ``below`` (:func:`strengths_decided_below`): no
+            peak-stress sequence is solved for them; their force limits are ``below``'s
+            (listed in :attr:`Figures.kept_from`, their K error there in
+            :attr:`Figures.strength_k_error`).
 
     Returns:
         The :class:`Figures` (K in N/mm, relative errors, stresses per N).
@@ -171,27 +185,35 @@ def element_figures(plan: Plan, model: str = "closed-form",
         stress = closed_form_stress
     element_stress = stress
 
-    if keep and below is None:
-        raise ValueError(f"keep {sorted(keep)}: pass the lower level's figures (below)")
-    k, k_err, st, kept_from = {}, {}, {}, {}
+    if (keep or keep_strength) and below is None:
+        raise ValueError(f"keep {sorted({*keep, *keep_strength})}: pass the lower level's "
+                         "figures (below)")
+    k, k_err, st, kept_from, strength_err = {}, {}, {}, {}, {}
     for name, g in plan.distinct_elements.items():
         if name in keep:
             k[name], k_err[name], st[name] = below.k[name], below.k_error[name], \
                 below.stresses[name]
             kept_from[name] = below.level_of(name)
+            if name in below.strength_k_error:
+                strength_err[name] = below.strength_k_error[name]
             continue
         if progress:
             progress(f"{model}: {name}")
         opts = {"progress": progress} if progress and is_meshed(model) else {}
         r = estimate(model, g, plan.material, **opts)
         k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
+        if name in keep_strength:  # K at the level; the force limits the level below made
+            st[name], kept_from[name] = below.stresses[name], below.level_of(name)
+            strength_err[name] = below.limit_k_errors()[name]
+            continue
         # the gauge strain the grid reads (strength, limits and read-out quote one); a level
         # whose stresses no open requirement reads solves no mesh sequence for it either
         es = element_stress(g, plan.material, model)
         st[name] = unread_at_the_grid(es, g, plan) if element_stress is unread_stress \
             else at_the_grid(es, g, plan)
     return Figures(model, k, k_err, st, {s.number: s.geometry.part_name for s in plan.slots},
-                   kept_from, "closed-form" if element_stress is unread_stress else None)
+                   kept_from, "closed-form" if element_stress is unread_stress else None,
+                   strength_err)
 
 
 def figures_limits(plan: Plan, fig: Figures) -> list:
@@ -216,12 +238,13 @@ def figures_limits(plan: Plan, fig: Figures) -> list:
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            return plan_limits(plan, fig.model, fig.stresses, fig.k_error, fig.grids_from)
+            return plan_limits(plan, fig.model, fig.stresses, fig.limit_k_errors(),
+                               fig.grids_from)
     levels = {fig.level_of(part) for part in plan.distinct_elements}
     if levels == {fig.model}:
         return plan_limits(plan, fig.model, fig.stresses, fig.k_error)
     order = sorted(levels)
-    by_level = [plan_limits(plan, lv, fig.stresses, fig.k_error) for lv in order]
+    by_level = [plan_limits(plan, lv, fig.stresses, fig.limit_k_errors()) for lv in order]
     # the same slots and kinds in the same order at every level: each from its part's level
     out = []
     for same in zip(*by_level):
@@ -969,7 +992,8 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
                         stress: Callable | None = None,
                         envelope_mm: Sequence[float] | None = None,
                         below: Figures | None = None, keep: Collection[str] = (),
-                        figures_made: list | None = None, reported: bool = True) -> list[dict]:
+                        figures_made: list | None = None, reported: bool = True,
+                        keep_strength: Collection[str] = ()) -> list[dict]:
     """One record per requirement, evaluated at ``model``.
 
     margin_rel: predicted / target - 1 for a lower bound (full-scale force,
@@ -987,8 +1011,10 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     (an FEM level needs :func:`tactcad.studies.strength_studies.element_stress`).
     ``below``, ``keep``: as :func:`element_figures`: the parts named in ``keep`` keep a lower
     level's figures and limits (with its errors); each listed limit then says its ``level``
-    and the full-scale record its ``element_levels`` (part -> level). ``figures_made``: a
-    list the level's :class:`Figures` is appended to (for the next level's ``below``).
+    and the full-scale record its ``element_levels`` (part -> level). ``keep_strength``:
+    as :func:`element_figures` (K at ``model``, the limits ``below``'s, said alike).
+    ``figures_made``: a list the level's :class:`Figures` is appended to (for the next
+    level's ``below``).
     ``reported`` False leaves out what is reported and never judged: where the design states
     no ``k_tolerance_rel``, the Monte Carlo K band record and the spread note (a search that
     reads the verdicts alone, as the comb's candidates and the atlas's points, needs
@@ -1000,7 +1026,7 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
     """
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, per_kind_binding
 
-    fig = element_figures(plan, model, progress, stress, below, keep)
+    fig = element_figures(plan, model, progress, stress, below, keep, keep_strength)
     if figures_made is not None:
         figures_made.append(fig)
     # the web band and K error, read by the derived K band requirement as well: once
@@ -1485,20 +1511,25 @@ LEVEL_FIXED = ("k_tolerance_rel", "k_tolerance_rel_toleranced", "footprint_mm",
                "max_crosstalk_rel", GRID_POWER_REQUIREMENT)
 
 def prefetch_top_level(plan: Plan, model: str, progress: Callable[[str], None] | None = None,
-                       peak_stress: bool = False, parts: Collection[str] | None = None) -> int:
+                       peak_stress: bool = False, parts: Collection[str] | None = None,
+                       stress_parts: Collection[str] | None = None) -> int:
     """At the ladder's dearest level, the distinct elements not yet kept in the store solved
     side by side, one process each (:mod:`tactcad.studies.parallel_solves`), for the matrix
     to read back; with ``peak_stress`` their peak-stress sequences too (a matrix given its
     ``stress`` reads them); the processes used (0 at any other level, or when nothing is
     to solve). ``parts``: the part names the level solves (default every distinct element;
-    :func:`elements_decided_below` keeps the others' lower-level figures)."""
+    :func:`elements_decided_below` keeps the others' lower-level figures). ``stress_parts``:
+    of those, the ones whose peak-stress sequence is solved (default all of them;
+    :func:`strengths_decided_below` keeps the others' lower-level stresses)."""
     from tactcad.studies.parallel_solves import solve_side_by_side, top_of_the_ladder
 
     if not top_of_the_ladder(model):
         return 0
-    return solve_side_by_side(model, [g for name, g in plan.distinct_elements.items()
-                                      if parts is None or name in parts], plan.material,
-                              progress, peak_stress=peak_stress)
+    solved = [g for name, g in plan.distinct_elements.items() if parts is None or name in parts]
+    stressed = None if stress_parts is None else \
+        [g for g in solved if g.part_name in stress_parts]
+    return solve_side_by_side(model, solved, plan.material, progress, peak_stress=peak_stress,
+                              stress_geometries=stressed)
 
 
 def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
@@ -1535,7 +1566,9 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
     the lower level's figures and errors, the record saying each part's level
     (``element_levels``; each listed limit its ``level``). The verdict is still the margin
     against the error of the figure that binds. With a requirement that reads K open
-    (K_r/K_m, the K_obj rows, ...) every element is solved.
+    (K_r/K_m, the K_obj rows, ...) every element's K is solved; when those read K alone
+    (:data:`K_ALONE`), the elements cleared below keep their stresses and limits
+    (:func:`strengths_decided_below`: no peak-stress sequence of theirs is solved).
 
     Args:
         stress: as :func:`verification_matrix` (needed once a FEM level runs).
@@ -1543,8 +1576,10 @@ def verification_auto(plan: Plan, progress: Callable[[str], None] | None = None,
 
     Returns:
         (records in the matrix's order, [{"model", "seconds", "undecided_before",
-        "elements_kept"}] per level run; ``elements_kept`` the part names whose lower-level
-        figures the level kept, empty when it solved every element).
+        "elements_kept", "stresses_kept"}] per level run; ``elements_kept`` the part names
+        whose lower-level figures the level kept, empty when it solved every element;
+        ``stresses_kept`` those whose K it solved and whose lower-level stresses it kept,
+        :func:`strengths_decided_below`).
 
     Outside a :func:`tactcad.store.keeping_results` block the climb keeps its solves in
     memory for its length (``Store(None)``, as ``--no-cache`` does): each level's K, grid
@@ -1587,17 +1622,25 @@ def _climbed(plan: Plan, progress: Callable[[str], None] | None,
         read = stress if stress is None or not reads_k_alone(open_before) else unread_stress
         # climbed for a per-element strength alone: the elements decided below are kept
         keep = elements_decided_below(plan, below, records_below, open_before, req)
+        # climbed for it with K_r/K_m (K alone) open too: every K solved, the stresses of
+        # the elements decided below kept
+        strong = frozenset() if keep else strengths_decided_below(
+            plan, below, records_below, open_before, req)
         solve = None if not keep else [name for name in plan.distinct_elements
                                        if name not in keep]
         prefetch_top_level(plan, level, progress,
-                           peak_stress=stress is not None and read is stress, parts=solve)
+                           peak_stress=stress is not None and read is stress, parts=solve,
+                           stress_parts=None if not strong else
+                           [name for name in plan.distinct_elements if name not in strong])
         made: list[Figures] = []
         records = verification_matrix(plan, level, progress, req, read, envelope_mm,
-                                      below=below, keep=keep, figures_made=made)
+                                      below=below, keep=keep, figures_made=made,
+                                      keep_strength=strong)
         below = made[0] if made else None
         records_below = {r["requirement"]: r for r in records}
         spent.append({"model": level, "seconds": time.perf_counter() - t0,
-                      "undecided_before": open_before, "elements_kept": sorted(keep)})
+                      "undecided_before": open_before, "elements_kept": sorted(keep),
+                      "stresses_kept": sorted(strong)})
         order = order or [r["requirement"] for r in records]
         top = i == len(ladder) - 1
         for r in records:
@@ -1638,7 +1681,8 @@ PER_ELEMENT_STRENGTH = ("full_scale_force_N",)
 
 def elements_decided_below(plan: Plan, below: Figures | None, records_below: Mapping[str, dict],
                            open_requirements: Sequence[str] | None,
-                           requirements: Requirements) -> frozenset[str]:
+                           requirements: Requirements, reading_k: Collection[str] = ()
+                           ) -> frozenset[str]:
     """The parts the next level need not solve: when every requirement still open is a
     per-element strength (:data:`PER_ELEMENT_STRENGTH`) or one computed alike at every level
     (``level_fixed``), and the last level left each such strength undecided, the parts all
@@ -1651,6 +1695,8 @@ def elements_decided_below(plan: Plan, below: Figures | None, records_below: Map
         plan: the design. below: the last level's figures (None before the first level).
         records_below: its records by requirement. open_requirements: those no level
             decided (None before the first). requirements: the design's (the force, N).
+        reading_k: requirements that may be open beside the strength too (those reading
+            K alone, :func:`strengths_decided_below`); default none.
 
     Returns:
         The part names kept from ``below`` (empty: every element is solved).
@@ -1667,7 +1713,7 @@ def elements_decided_below(plan: Plan, below: Figures | None, records_below: Map
         if key in PER_ELEMENT_STRENGTH:
             if r["verdict"] != "undecided" or "less_accurate_than" in r:
                 return frozenset()
-        elif not r.get("level_fixed"):
+        elif not r.get("level_fixed") and key not in reading_k:
             return frozenset()
     force = requirements.full_scale_force_N
     parts = set(plan.distinct_elements)
@@ -1677,6 +1723,30 @@ def elements_decided_below(plan: Plan, below: Figures | None, records_below: Map
                    lim.force_N >= force) != "pass":
             cleared.discard(lim.part_name)
     return frozenset(cleared) if cleared != parts else frozenset()
+
+
+def strengths_decided_below(plan: Plan, below: Figures | None,
+                            records_below: Mapping[str, dict],
+                            open_requirements: Sequence[str] | None,
+                            requirements: Requirements) -> frozenset[str]:
+    """The parts whose stresses the next level need not solve though it solves their K: as
+    :func:`elements_decided_below`, with requirements reading K alone (:data:`K_ALONE`:
+    K_r/K_m, ...) open beside the per-element strength. Such a requirement reads every
+    element's K at the level (all solved there), none of its stresses; the strength of a
+    part whose force limits below clear the full-scale force by their own error is decided,
+    so its peak-stress sequence (at fem3d the bare element's, a mesh sequence as dear as its
+    K's) is not solved: its limits are the lower level's.
+
+    Args:
+        plan: the design. below: the last level's figures (None before the first level).
+        records_below: its records by requirement. open_requirements: those no level
+            decided (None before the first). requirements: the design's (the force, N).
+
+    Returns:
+        The part names whose stresses are kept from ``below`` (empty: every stress solved).
+    """
+    return elements_decided_below(plan, below, records_below, open_requirements,
+                                  requirements, reading_k=K_ALONE)
 
 
 def binds_below(record: dict) -> bool:
