@@ -1323,7 +1323,9 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         # the lab's own jaw kept: the die, where it designs there without a metal's options
         die_paste = die_without_metal_options(args, targets, room) \
             if ignored and field == "--jaw" else None
-        pasted = [*([die_paste] if die_paste else []), *misfit_alternatives(misfits),
+        fits = misfit_alternatives(misfits)  # the jaw file's keys before another jaw
+        own = [a for a in fits if not a["option"].startswith("--jaw ")]
+        pasted = [*own, *([die_paste] if die_paste else []), *(a for a in fits if a not in own),
                   *(a for _, e in refusals for a in e.alternatives)]
         untried = [untried_die_line(ignored, die_paste is not None)] if ignored else []
         raise DesignError(
