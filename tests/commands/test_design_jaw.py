@@ -213,7 +213,8 @@ def test_a_jaw_too_small_for_any_comb_names_the_sizes_that_bind_and_the_jaw_that
                                    "sheet's comb"), line
     assert "vs the jaw's 2.6 mm (thickness_mm + tip_proud_mm)" in line
     assert "width 4.2 mm" in line and "vs the pocket's 2.1 mm" in line
-    assert "silicon die: not tried (--material" in r.stderr  # the die takes no metal
+    assert "silicon die: not tried: --material is a metal's option" in r.stderr  # the die
+    assert "to paste: --construction mems-die" in r.stderr  # takes none, and keeps this jaw
     assert r.stderr.splitlines()[-1].strip().startswith("to paste: --jaw 10")
     assert not list(tmp_path.iterdir())
 
@@ -917,3 +918,76 @@ def test_the_shaft_refusal_names_the_combs_need_apart_from_the_jaws_value(tmp_pa
             "(thickness_mm; this jaw's 2.1 mm) + 2.1 mm (opposing_jaw_mm, this jaw's)") in message
     assert "wide (width_mm; this jaw's 5.5 mm)" in message
     assert "(shaft_diameter_mm; this jaw's 7 mm)" in message
+
+
+#: a lab's 7 mm grasper jaw (the new-lab review's): it holds no comb, a silicon die designs in it
+LAB7_JAW = ("[grasper_jaw]\nshaft_diameter_mm = 7.0\nwidth_mm = 4.5\nlength_mm = 26.0\n"
+            "thickness_mm = 2.6\nopposing_jaw_mm = 2.6\npin_diameter_mm = 1.5\n"
+            "pin_inset_mm = 1.6\nopening_angle_deg = 40.0\n")
+LAB7_TARGETS = ["--kr-over-km", "8", "--kobj-range", "0.2", "4", "--full-scale-force", "0.5"]
+
+
+def test_a_jaw_file_with_a_metals_material_pastes_the_die_that_keeps_the_labs_jaw(tmp_path):
+    """``--material`` keeps the die from being tried; the refusal still offers the die in the
+    lab's own jaw, naming --material to leave out, and that paste designs; the refusal's
+    lines open and close its parenthesis once."""
+    jaw = tmp_path / "jaw7.toml"
+    jaw.write_text(LAB7_JAW, encoding="utf-8")
+    asked = ["design", "--jaw", str(jaw), *LAB7_TARGETS, "--out", str(tmp_path / "lab7")]
+    r = run_cli(*asked, "--material", "17-4PH-H900", "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "--jaw"
+    die = error["alternatives"][0]
+    assert die["option"].startswith("--construction mems-die") and \
+        die["without"] == ["--material"], error["alternatives"]
+    assert "--material 17-4PH-H900 left out" in die["words"]
+    assert "--jaw 10" in [a["option"] for a in error["alternatives"]]
+    message = error["message"]
+    assert "(\n" not in message and "))" not in message.splitlines()[-1], message
+    assert message.count("(") == message.count(")"), message
+    assert "without --material the die designs in this jaw" in message
+    r = run_cli(*asked, *die["option"].split(), "--quiet")  # the paste, without --material
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "lab7" / "lab7.toml").exists()
+
+
+def test_a_bad_jaw_file_is_refused_before_an_existing_output_folder(tmp_path):
+    """The inputs first: a jaw file's bad key is the refusal, not the folder it would go
+    to (which was said alone, and the jaw's error only once that was mended)."""
+    jaw = tmp_path / "j10.toml"
+    jaw.write_text(LAB7_JAW.replace("length_mm = 26.0", "length_mm = 3.0"), encoding="utf-8")
+    folder = tmp_path / "o_x"
+    folder.mkdir()
+    (folder / "o_x.toml").write_text("[design]\nname = \"o_x\"\n", encoding="utf-8")
+    r = run_cli("design", "--jaw", str(jaw), *LAB7_TARGETS, "--out", str(folder), "--json")
+    assert r.returncode == 2, r.stderr
+    error = json.loads(r.stdout)["error"]
+    assert error["field"] == "grasper_jaw.length_mm" and error["value"] == 3.0, error
+    r = run_cli("design", "--jaw", str(jaw.with_name("none.toml")), *LAB7_TARGETS, "--out",
+                str(folder), "--json")
+    assert json.loads(r.stdout)["error"]["field"] == "--jaw"
+
+
+#: the new-lab review's comb for the 10 mm jaw, whose 7.8 mm arms lie past the closed
+#: form's fitted arm/arm height (0.99 ... 4)
+LONG_ARMED_COMB = ["design", "--jaw", "10", "--construction", "monolithic-comb",
+                   "--kr-over-km", "12.1472", "--kobj-range", "0.395847", "4.17276",
+                   "--full-scale-force", "0.135702", "--columns", "3", "--material",
+                   "17-4PH-H900"]
+
+
+@pytest.mark.slow  # a whole comb search through the command line
+def test_a_jaw_designs_range_warning_is_said_in_text_as_in_json_once(tmp_path):
+    """The warning --json lists (and readout, verify, strength say of the written file) is
+    said once on stderr by the text run that writes the file; --quiet keeps it back."""
+    said = "closed-form stiffness correction used outside its fitted range"
+    r = run_cli(*LONG_ARMED_COMB, "--out", str(tmp_path / "a.toml"), "--json")
+    assert r.returncode == 0, r.stderr
+    assert any(said in w for w in json.loads(r.stdout)["warnings"]), r.stdout[-2000:]
+    r = run_cli(*LONG_ARMED_COMB, "--out", str(tmp_path / "b.toml"))
+    assert r.returncode == 0, r.stderr
+    lines = [x for x in r.stderr.splitlines() if said in x]
+    assert len(lines) == 1 and lines[0].startswith("tactcad: warning: "), r.stderr
+    r = run_cli(*LONG_ARMED_COMB, "--out", str(tmp_path / "c.toml"), "--quiet")
+    assert r.returncode == 0 and said not in r.stderr, r.stderr

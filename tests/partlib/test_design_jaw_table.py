@@ -303,6 +303,37 @@ def test_a_jaw_the_shaft_cannot_pass_closed_is_refused_before_any_search():
     assert "<= 6.0993 mm" in e.allowed and "opposing_jaw_mm" in e.allowed
 
 
+#: a lab's 12 mm jaw too thick closed beside its 3.2 mm opposing jaw at its 11 mm width
+THICK12_JAW = {"shaft_diameter_mm": 12.0, "width_mm": 11.0, "length_mm": 26.0,
+               "thickness_mm": 3.2, "opposing_jaw_mm": 3.2, "pin_diameter_mm": 1.5,
+               "pin_inset_mm": 1.6, "opening_angle_deg": 40.0}
+
+
+def test_a_jaw_too_thick_closed_names_the_width_and_opposing_jaw_that_let_it_pass():
+    """The refusal of thickness_mm gives the widest width_mm and the thickest
+    opposing_jaw_mm that let the stated thickness pass the shaft closed (the other keys
+    kept), each a value a lab pastes into its file and the jaw's rules then accept."""
+    import re
+
+    with pytest.raises(DesignErrors) as err:
+        jaw_room(THICK12_JAW, "jaw12.toml")
+    e = err.value.errors[0]
+    assert e.field == "grasper_jaw.thickness_mm" and "<= 1.5958 mm" in e.allowed
+    width = float(re.search(r"width_mm <= ([0-9.]+) mm", e.why).group(1))
+    opposing = float(re.search(r"opposing_jaw_mm <= ([0-9.]+) mm", e.why).group(1))
+    assert (width, opposing) == (10.1508, 1.5958), e.why  # sqrt(12² - 6.4²), sqrt(12² - 11²) - 3.2
+    for key, value in (("width_mm", width), ("opposing_jaw_mm", opposing)):
+        assert jaw_room({**THICK12_JAW, key: value}, "jaw12.toml").across_mm > 0
+    # the width left to a clearance: the least clearance that lets it pass
+    by_clearance = {k: v for k, v in THICK12_JAW.items() if k != "width_mm"}
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({**by_clearance, "width_clearance_mm": 1.0}, "jaw12.toml")
+    why = err.value.errors[0].why
+    least = float(re.search(r"width_clearance_mm >= ([0-9.]+) mm", why).group(1))
+    assert least == 1.8492, why
+    assert jaw_room({**by_clearance, "width_clearance_mm": least}, "jaw12.toml").across_mm > 0
+
+
 def test_a_stated_pocket_depth_sets_the_combs_face_wall(comb_data):
     plan = plan_from_dict(with_tables(comb_data, grasper_jaw={"pocket_depth_mm": 5.2}))
     g = jaw_part(plan).geometry

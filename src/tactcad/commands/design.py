@@ -481,6 +481,62 @@ def die_ignored(args: argparse.Namespace) -> dict[str, str]:
             if getattr(args, attr, None) is not None}
 
 
+def untried_die_line(ignored: dict[str, str], designs: bool) -> str:
+    """The line of a jaw refusal for the silicon die not tried for the options given that a
+    die does not take (:func:`die_ignored`).
+
+    Args:
+        ignored: those options -> why a die takes none.
+        designs: whether the die designs in this jaw without them (its paste follows).
+
+    Returns:
+        ``silicon die: not tried: ...`` on one line, ending without a parenthesis (it closes
+        the refusal's).
+    """
+    options = " and ".join(ignored)
+    verb = "is a metal's option" if len(ignored) == 1 else "are a metal's options"
+    text = f"silicon die: not tried: {options} {verb}"
+    return text + (f"; without {options} the die designs in this jaw, to paste below"
+                   if designs else "")
+
+
+def die_without_metal_options(args: argparse.Namespace, targets, room) -> dict | None:
+    """The silicon die's paste for the lab's own jaw when options a die does not take
+    (:func:`die_ignored`, such as ``--material``) kept it from being tried: the die's
+    change that designs at the columns asked (:func:`die_columns_that_design`), to paste
+    with those options left out.
+
+    Args:
+        args: the options asked. targets: the targets asked (N/mm, N). room: the jaw's
+            room (:class:`tactcad.partlib.grasper_jaw.JawRoom`, mm).
+
+    Returns:
+        The alternative (``option``: ``--construction mems-die`` and the targets that bind;
+        ``words``: the options to leave out and why; ``without``: those options), or None
+        where the die does not fit the jaw at those columns or no pasted target designs it.
+    """
+    from tactcad.products.silicon_die.design.die_mount import die_misfit
+    from tactcad.products.silicon_die.design.mems_die import COLUMNS_RANGE, DEFAULT_COLUMNS
+
+    ignored = die_ignored(args)
+    columns = args.columns or DEFAULT_COLUMNS
+    if not ignored or not COLUMNS_RANGE[0] <= columns <= COLUMNS_RANGE[1] \
+            or die_misfit(room, room.table or {}, columns):
+        return None
+    from tactcad.store import Store, keeping_results
+
+    with keeping_results(Store(None)):  # an alternative looked at: nothing kept on disk
+        whole = die_columns_that_design(columns, targets, room)
+    if not whole:
+        return None
+    change = whole.split(maxsplit=2)[2:]  # the columns are those asked (or the default)
+    left_out = ", ".join(f"{o} {getattr(args, DIE_IGNORES[o][0])}" for o in ignored)
+    why = "; ".join(ignored.values())
+    return {"option": " ".join(["--construction", DIE_CONSTRUCTION, *change]),
+            "words": f"the silicon die in this jaw, with {left_out} left out: {why}",
+            "without": list(ignored)}
+
+
 def misfit_words(misfits: list[dict]) -> str:
     """A product's misfits against a jaw (:func:`tactcad.studies.comb_design.comb_misfit`,
     :func:`tactcad.products.silicon_die.design.die_mount.die_misfit`) in words: "does not
@@ -1189,11 +1245,13 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     the one that counts (written with its scenes), or every binding limit."""
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
+    from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.project_folder import (check_project_target, scenes_without_rigs_text,
                                         write_project)
 
     refuse_options_a_jaw_sets(args)
     chosen, left = jaw_constructions(args)
+    room = jaw_room(*jaw_of(args.jaw))  # the inputs first: a bad jaw file before the folder
     folder = None if args.out.endswith(".toml") else check_project_folder(args.out)
     path = check_output_path(args.out, args.force) if folder is None else \
         folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
@@ -1202,9 +1260,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         check_project_target(folder, path.name, args.force)
     name = path.stem.replace("-", "_") or "grasper_insert"
     from tactcad.design.array_plan import EXAMPLES, read_toml
-    from tactcad.partlib.grasper_jaw import jaw_room
 
-    room = jaw_room(*jaw_of(args.jaw))
     refusals, result, used = [], None, None
     misfits = []  # (product, its misfits): not searched, each dimension that binds said
     for c in chosen:
@@ -1259,18 +1315,24 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
                 after=[one_refusal_line(n, misfit_words(m)) for n, m in misfits],
                 more=misfit_alternatives(misfits)) from None
     if result is None and misfits:  # nothing fits the jaw: each product's binding size
-        pasted = [*misfit_alternatives(misfits),
-                  *(a for _, e in refusals for a in e.alternatives)]
-        untried = ([f"silicon die: not tried ({', '.join(die_ignored(args))}: a metal's "
-                    "options)"] if args.construction == "auto" and die_ignored(args) else [])
         field, value, allowed = misfit_option(misfits, refusals, args)
+        ignored = die_ignored(args) if args.construction == "auto" else {}
+        # the lab's own jaw kept: the die, where it designs there without a metal's options
+        die_paste = die_without_metal_options(args, targets, room) \
+            if ignored and field == "--jaw" else None
+        fits = misfit_alternatives(misfits)  # the jaw file's keys before another jaw
+        own = [a for a in fits if not a["option"].startswith("--jaw ")]
+        pasted = [*own, *([die_paste] if die_paste else []), *(a for a in fits if a not in own),
+                  *(a for _, e in refusals for a in e.alternatives)]
+        untried = [untried_die_line(ignored, die_paste is not None)] if ignored else []
         raise DesignError(
             field, value, allowed or "a jaw that holds " + " or ".join(
                 ["a " + n for n, _ in misfits] + [n for n, _ in refusals]),
-            "\n  ".join([""] + [one_refusal_line(n, misfit_words(m)) for n, m in misfits]
-                        + [one_refusal_line(n, e) for n, e in refusals] + untried
-                        + ([] if pasted else ["none to paste: no option or jaw file key "
-                                              "makes one of them fit this jaw"])),
+            "each against this jaw:\n  " + "\n  ".join(
+                [one_refusal_line(n, misfit_words(m)) for n, m in misfits]
+                + [one_refusal_line(n, e) for n, e in refusals] + untried
+                + ([] if pasted else ["none to paste: no option or jaw file key "
+                                      "makes one of them fit this jaw"])),
             alternatives=pasted, limit=misfit_limit(misfits, refusals))
     if result is None:
         if len(refusals) == 1:

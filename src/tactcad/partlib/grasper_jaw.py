@@ -367,9 +367,38 @@ def _check_closed(p: Problems, j: GrasperJawSection, blame: tuple[str, ...] = ()
               f"<= {fmt(round(closed_thickness_limit_mm(bore, width) - j.opposing_jaw_mm, 4))}"
               f" mm with the {fmt(j.opposing_jaw_mm)} mm opposing jaw (opposing_jaw_mm)",
               f"the closed jaws ({fmt(width)} x {fmt(j.thickness_mm + j.opposing_jaw_mm)} mm, "
-              f"diagonal {fmt(round(closed, 4))} mm) pass the {shaft_words(j)} mm shaft; a "
-              "narrower jaw (width_mm) or a thinner opposing jaw (opposing_jaw_mm) leaves room "
-              "for a thicker one")
+              f"diagonal {fmt(round(closed, 4))} mm) pass the {shaft_words(j)} mm shaft; "
+              + room_for_thickness_words(j))
+
+
+def room_for_thickness_words(j: GrasperJawSection) -> str:
+    """The jaw file's values that let the stated ``thickness_mm`` pass the shaft closed,
+    each with the other keys kept: the widest jaw (``width_mm``, or the least
+    ``width_clearance_mm`` where the width is left out), and the thickest opposing jaw
+    (``opposing_jaw_mm``); a key no value of which in its own range lets it pass is said so.
+
+    Args:
+        j: the table with its class defaults (:func:`with_class_defaults`; mm).
+
+    Returns:
+        The words, e.g. ``for the stated 3.2 mm (thickness_mm): width_mm <= 10.1508 mm with
+        the 3.2 mm opposing jaw, or opposing_jaw_mm <= 1.5958 mm with the 11 mm width``.
+    """
+    bore, t, o, width = bore_mm(j), j.thickness_mm, j.opposing_jaw_mm, jaw_width_mm(j)
+    widest = closed_thickness_limit_mm(bore, t + o) if t + o < bore - 1e-9 else 0.0
+    widest = math.floor(widest * 1e4) / 1e4
+    if j.width_mm is not None:
+        key_words = "width_mm" if widest < 1.0 else f"width_mm <= {fmt(widest)} mm"
+    else:
+        least = math.ceil((bore - widest) * 1e4) / 1e4
+        key_words = "width_clearance_mm" if widest <= 0.0 or least > 6.0 else \
+            f"width_clearance_mm >= {fmt(least)} mm"
+    width_part = (f"{key_words} with the {fmt(o)} mm opposing jaw" if "=" in key_words else
+                  f"no {key_words} with the {fmt(o)} mm opposing jaw")
+    thickest = math.floor((closed_thickness_limit_mm(bore, width) - t) * 1e4) / 1e4
+    opposing_part = (f"opposing_jaw_mm <= {fmt(thickest)} mm" if thickest >= 0.5 else
+                     "no opposing_jaw_mm") + f" with the {fmt(width)} mm width"
+    return (f"for the stated {fmt(t)} mm (thickness_mm): {width_part}, or {opposing_part}")
 
 
 def pocket_start_limit_mm(j: GrasperJawSection) -> float:
