@@ -1391,11 +1391,17 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
                 "lists them)" if past_fatigue else ""))
     columns = grasp_force_columns(target, w["margin_rel"], w["on_stop"]) \
         if w["margin_rel"] is not None else {"predicted": None, "margin_rel": None}
+    # no grasp force predicted (the deciding element on its stop): say what is predicted
+    stop_words = {"predicted_words": f"on its stop: element {w['element']} carries "
+                                     f"{w['element_force_N']:.4g} N (limit "
+                                     f"{w['overload_limit_N']:.4g} N)"} \
+        if columns["predicted"] is None and w["on_stop"] else {}
     return _record("max_grasp_force_N", target, columns["predicted"], error,
                    columns["margin_rel"], fig.model, not over, verdict=w["verdict"],
                    binding_element=w["element"], element_force_N=w["element_force_N"],
                    overload_limit_N=w["overload_limit_N"], binding_words=words,
                    rated_force_N=rated, elements=items, grasp=grasp_summary(result),
+                   **stop_words,
                    over_limit=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
                                f"its overload limit {it['overload_limit_N']:.4g} N"
                                for it in over],
@@ -1870,16 +1876,46 @@ def matrix_table(records: list[dict]) -> str:
             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
         rows.append(f"| {r['requirement']} | {target_text(r)} | "
-                    f"{value_text(r['predicted'])} | "
+                    f"{predicted_text(r)} | "
                     f"{percent_text(r['error_estimate_rel'], sign=False)} | "
                     f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
                     f"{binding_text(r)} |")
-    for r in records:
-        for lim in r.get("limits", ()):
-            rows.append(f"|   limit: {lim['words']} (element {lim['element']}) | | "
-                        f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
-                        f"{'binds' if lim['binding'] else ''} | |")
+        rows += limit_rows(r)  # under the requirement they belong to
     return "\n".join(rows)
+
+
+def limit_rows(record: dict) -> list[str]:
+    """The table rows of a record's force limits (the full-scale force's: yield, fatigue,
+    the gauge's strains, ...; ``binds`` on the one that binds), each named ``limit:``, to
+    follow that record's own row; none for a record without limits.
+
+    Args:
+        record: a verification record (``limits``: N, relative errors).
+
+    Returns:
+        Markdown table rows.
+    """
+    return [f"|   limit: {lim['words']} (element {lim['element']}) | | "
+            f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
+            f"{'binds' if lim['binding'] else ''} | |"
+            for lim in record.get("limits", ())]
+
+
+def predicted_text(record: dict) -> str:
+    """A record's prediction as verify, check and the review page show it:
+    :func:`value_text` of ``predicted``, or, where the record predicts no figure in the
+    target's quantity, the words saying what it predicts instead (``predicted_words``: a
+    grasp whose deciding element rests on its stop, with the force that element carries).
+
+    Args:
+        record: a verification record.
+
+    Returns:
+        The text.
+    """
+    if record.get("predicted") is None and record.get("predicted_words"):
+        return record["predicted_words"]
+    return value_text(record.get("predicted"))
 
 
 def target_text(record: dict) -> str:
