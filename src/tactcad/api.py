@@ -676,7 +676,8 @@ class Project:
         """Every distinct element's peak stress per newton, yield-limited force and its
         stress, gauge strain and tip deflection at the rated full-scale force, and the
         rating judged against every element force limit, as ``tactcad strength --json``
-        gives them (MPa, N, mm; ``requirement["met"]``).
+        gives them (MPa, N, mm; ``requirement["verdict"]``: pass, fail or undecided, as
+        verify's ``full_scale_force_N`` row).
 
         Args:
             model: ladder level (``closed-form``, ``beam``, ``fem2d``, ``fem3d``).

@@ -339,3 +339,41 @@ def test_a_strength_record_names_no_paper_in_its_fields():
     from tactcad.mechanics.element_strength import StrengthRecord
 
     assert not [f.name for f in dataclasses.fields(StrengthRecord) if "paper" in f.name]
+
+
+def _rated_within_error(design_data, margin_rel):
+    """The default design rated ``margin_rel`` below its lowest element force limit (N)."""
+    from tactcad.studies.project_reports import strength_record
+
+    limit = strength_record(plan_from_dict(design_data))[0]["requirement"][
+        "element_force_limit_N"]
+    return limit / (1.0 + margin_rel)
+
+
+def test_a_rating_met_inside_its_error_is_undecided_as_verify_judges_it(design_data, capsys):
+    from tactcad.studies.project_reports import strength_record
+    from tactcad.studies.verification import verification_matrix
+
+    rated = _rated_within_error(design_data, 0.01)  # met by 1 %, the closed form's error ~10 %
+    design_data.setdefault("requirements", {})["full_scale_force_N"] = rated
+    plan = plan_from_dict(design_data)
+    judged = strength_record(plan)[0]["requirement"]
+    row = verification_matrix(plan, "closed-form")[0]
+    assert row["requirement"] == "full_scale_force_N" and row["verdict"] == "undecided"
+    assert judged["verdict"] == row["verdict"] and judged["met"] == row["pass"]
+    assert judged["margin_rel"] == pytest.approx(row["margin_rel"])
+    assert judged["error_estimate_rel"] == pytest.approx(row["error_estimate_rel"])
+    # the command says so, names the level that decides it and exits as verify does (0)
+    assert main(["strength", "--set", f"requirements.full_scale_force_N={rated!r}"]) == 0
+    out = capsys.readouterr().out
+    assert "UNDECIDED" in out and ": met;" not in out and "--model fem3d" in out
+    assert "margin +1.0 %" in out
+
+
+def test_a_rating_beyond_its_error_fails_and_exits_1(design_data, capsys):
+    rated = _rated_within_error(design_data, -0.5)  # the limit half the rating
+    assert main(["strength", "--json", "--set", f"requirements.full_scale_force_N={rated!r}"]) == 1
+    judged = json.loads(capsys.readouterr().out)["requirement"]
+    assert judged["verdict"] == "fail" and not judged["met"]
+    assert main(["strength", "--set", f"requirements.full_scale_force_N={rated!r}"]) == 1
+    assert ": NOT met;" in capsys.readouterr().out

@@ -932,3 +932,23 @@ def test_a_candidate_refused_with_its_stops_is_validated_once(monkeypatch):
         weighed = comb_design.weighed_candidate(None, webbed, array_envelope_mm)
     assert counted == [True]
     assert weighed == fresh and weighed.plan is None and weighed.failures
+
+
+@pytest.mark.slow  # a whole comb search (the module's fixture)
+def test_the_comb_writes_the_k_obj_resolution_it_reaches_as_a_stacked_design_does(found):
+    """requirements.md: ``tactcad design`` writes the K_obj resolution the design reaches
+    (marked derived under [assumptions]) and verify judges it, whatever the construction."""
+    from tactcad.design.requirements_section import DERIVED_BY_DESIGN
+    from tactcad.studies.inverse_design import written_kobj_resolution
+    from tactcad.studies.verification import requirements_of
+
+    written = found.data["requirements"]["kobj_resolution_rel"]
+    assert written == written_kobj_resolution(found.plan, Targets(10.0, (0.5, 5.0), 0.05))[0]
+    assert found.data["assumptions"]["requirements.kobj_resolution_rel"].startswith(
+        DERIVED_BY_DESIGN)
+    req = requirements_of(found.plan)
+    assert "kobj_resolution_rel" in req.written and "kobj_resolution_rel" not in req.stated
+    row = next(r for r in verification_matrix(found.plan, "closed-form",
+                                              envelope_mm=array_envelope_mm(found.plan))
+               if r["requirement"] == "kobj_resolution_rel")
+    assert row["verdict"] == "pass" and not row.get("informational")

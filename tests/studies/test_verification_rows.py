@@ -269,10 +269,50 @@ def test_an_excitation_that_overheats_the_gauge_fails_verification_by_tn502():
     assert high["verdict"] == "fail" and "TN-502" in high["basis"]
     assert high["predicted"] == pytest.approx(low["predicted"] * (15.0 / 0.5) ** 2)
     assert not matrix_passed(verification_matrix(high_plan))
-    between = _power_row(example(**{"readout.excitation_V": 2.5}))
+    between = _power_row(_without_accepted_density(**{"readout.excitation_V": 2.5}))
     assert between["predicted"] > TN502_THIN_SECTION_W_PER_MM2[1]
     assert between["grid_rise_K"] <= TN502_HIGH_EXCITATION_DERATING_K
     assert between["verdict"] == "undecided" and between["level_fixed"]
+    assert "requirements.grid_power_density_W_per_mm2" in between["basis"]
+
+
+def _without_accepted_density(**overrides):
+    """The example without the grid power density it states it accepts."""
+    raw = with_overrides(read_toml(EXAMPLE, "design"), overrides)
+    del raw["requirements"]["grid_power_density_W_per_mm2"]
+    return plan_from_dict(raw, str(EXAMPLE))
+
+
+def test_a_stated_grid_power_density_is_what_the_excitation_is_judged_against():
+    """TN-502's density is guidance on self-heating, not a limit: a design that states the
+    density it accepts passes within it and fails above it (exact figures, no band); the
+    grid past the backing's derating fails whatever it accepts; not stated, a grid above the
+    guidance stays visible (undecided, the basis naming the key that accepts it)."""
+    from tactcad.design.readout_section import TN502_THIN_SECTION_W_PER_MM2
+
+    accepted = _power_row(example(**{"readout.excitation_V": 2.5}))
+    assert accepted["predicted"] > TN502_THIN_SECTION_W_PER_MM2[1]
+    assert accepted["verdict"] == "pass" and accepted["stated"]
+    assert accepted["target"] == 0.025 and accepted["margin_rel"] > 0
+    assert "accepts" in accepted["basis"] and "not a limit" in accepted["basis"]
+    tight = _power_row(example(**{"requirements.grid_power_density_W_per_mm2": 0.02}))
+    assert tight["verdict"] == "fail" and tight["margin_rel"] < 0
+    hot = _power_row(example(**{"readout.excitation_V": 15.0,
+                                "requirements.grid_power_density_W_per_mm2": 0.1}))
+    assert hot["verdict"] == "fail"
+    from tactcad.studies.verification import grid_power_density_verdict
+
+    assert grid_power_density_verdict(0.05, 31.0, 0.1) == "fail"  # accepted, yet too hot
+    assert grid_power_density_verdict(0.05, 29.0, 0.1) == "pass"
+    assert _power_row(_without_accepted_density())["verdict"] == "undecided"
+
+
+def test_a_grid_power_density_out_of_range_names_the_field():
+    with pytest.raises(DesignErrors) as exc:
+        example(**{"requirements.grid_power_density_W_per_mm2": 0.5})
+    err = next(e for e in exc.value.errors
+               if e.field == "requirements.grid_power_density_W_per_mm2")
+    assert "0.1" in err.allowed and "W/mm^2" in err.allowed
 
 
 def test_worst_and_error_is_the_worst_resolution_and_its_error_kept_once(plan):

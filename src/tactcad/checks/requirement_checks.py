@@ -83,7 +83,7 @@ def requirement_check(r: dict, model: str = AUTO) -> CheckResult:
     """
     from tactcad.mechanics.verdicts import INFO
     from tactcad.studies.verification import (GRID_POWER_REQUIREMENT, binding_text, margin_text,
-                                              percent_text, value_text)
+                                              percent_text, predicted_text, value_text)
 
     if r["verdict"] == INFO:  # the design's own figure (a requirement the lab never stated)
         detail = (f"info: not stated, not judged: predicted {value_text(r['predicted'])} "
@@ -91,7 +91,7 @@ def requirement_check(r: dict, model: str = AUTO) -> CheckResult:
                   f"{r['model']})" + (f"; {r['note']}" if r.get("note") else ""))
         return CheckResult("requirement", r["requirement"], True, detail, info=True)
     detail = (f"{r['verdict']}: target {value_text(r['target'])}, predicted "
-              f"{value_text(r['predicted'])}, margin {margin_text(r)} "
+              f"{predicted_text(r)}, margin {margin_text(r)} "
               f"(error {percent_text(r['error_estimate_rel'], sign=False)}, {r['model']})")
     if binding_text(r):
         detail += f", binds: {binding_text(r)}"

@@ -30,9 +30,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "stress, gauge strain and tip deflection at the design's rated full-scale "
                     "force ([requirements] full_scale_force_N, derived when absent; the force "
                     "verify and the drawings name); judges that rating against every element "
-                    "force limit and exits 1 when it is not met; warns where the rated force "
-                    "exceeds an element's yield-limited force, the fatigue strength or the "
-                    "gauge's fatigue or maximum strain. Units: MPa, N, mm, microstrain.")
+                    "force limit as verify does (met, NOT met, or UNDECIDED when the margin "
+                    "lies inside the level's error estimate) and exits 1 when it fails; "
+                    "warns where the rated force exceeds an element's yield-limited force, "
+                    "the fatigue strength or the gauge's fatigue or maximum strain. Units: "
+                    "MPa, N, mm, microstrain.")
     p.add_argument("--model", choices=models(), default="closed-form",
                    help=f"ladder level ({levels_help()} per distinct element; FEM stress "
                         "meshes are finer than the stiffness ones; default %(default)s)")
@@ -65,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
     progress = (lambda s: report(f"  ... {s}"))
     record, records = strength_record(plan, args.model, progress)
     judged = record["requirement"]
-    code = 0 if judged["met"] else 1
+    code = 1 if judged["verdict"] == "fail" else 0  # as verify: an undecided rating exits 0
     if args.json:
         print(json.dumps(record, indent=2, allow_nan=False))
         return code
@@ -88,10 +90,7 @@ def run(args: argparse.Namespace) -> int:
               f"{r.gauge_strain_at_full_scale * 1e6:>10.0f} "
               f"{r.tip_deflection_mm_at_full_scale * 1e3:>7.1f}"
               + (f" {r.stress_MPa_at_reference_load:>10.0f}" if load else ""))
-    print(f"rated full-scale force {judged['full_scale_force_N']:g} N "
-          f"({judged['reason']}): {'met' if judged['met'] else 'NOT met'}; the lowest element "
-          f"force limit is {judged['element_force_limit_N']:.3g} N, bound by "
-          f"{judged['binding_limit']} (element {judged['binding_element']})")
+    print(rating_text(judged))
     seen = set()
     for r in records:
         for w in r.warnings:
@@ -100,6 +99,49 @@ def run(args: argparse.Namespace) -> int:
                 seen.add(key)
                 print(f"warning: element {r.element} ({r.part_name}): {w}")
     return code
+
+
+#: How ``strength`` words each verdict on the rated full-scale force.
+RATING_WORDS = {"pass": "met", "fail": "NOT met", "undecided": "UNDECIDED"}
+
+
+def rating_text(judged: dict) -> str:
+    """The line judging the rated full-scale force: its verdict (verify's, with the margin and
+    the binding limit's error estimate) and, when undecided, the level that can decide it.
+
+    Args:
+        judged: :func:`tactcad.studies.project_reports.full_scale_judgement`'s record (N,
+            relative).
+
+    Returns:
+        One line.
+    """
+    line = (f"rated full-scale force {judged['full_scale_force_N']:g} N ({judged['reason']}): "
+            f"{RATING_WORDS[judged['verdict']]}; the lowest element force limit is "
+            f"{judged['element_force_limit_N']:.3g} N, bound by {judged['binding_limit']} "
+            f"(element {judged['binding_element']}), margin {100 * judged['margin_rel']:+.1f} % "
+            f"(error {100 * judged['error_estimate_rel']:.2f} %, {judged['model']})")
+    if judged["verdict"] != "undecided":
+        return line
+    return f"{line}: the margin lies inside the error; {climb_hint(judged['model'])}"
+
+
+def climb_hint(model: str) -> str:
+    """What decides a rating undecided at ``model``: a more accurate ladder level, or, at the
+    top, a larger margin.
+
+    Args:
+        model: the ladder level that left it undecided.
+
+    Returns:
+        A phrase.
+    """
+    order = list(models())
+    above = order[order.index(model) + 1:] if model in order else []
+    if not above:
+        return (f"{model} is the ladder's top level: widen the margin (a lower rating, a "
+                "stronger element) or measure the element")
+    return f"a more accurate level decides it: tactcad strength --model {above[-1]}"
 
 
 def _run_table1(plan, model: str, as_json: bool) -> int:

@@ -2,7 +2,7 @@
 imports nothing: a command's ``--help`` and its options' ranges read them without loading
 the design schema (:mod:`tactcad.design.requirements_section` re-exports them).
 
-Units: N, N/mm.
+Units: N, N/mm, W/mm^2.
 """
 
 #: The largest targets a design file states (the design command's options take the same).
@@ -16,3 +16,6 @@ MIN_FULL_SCALE_FORCE_N = 1e-9
 MIN_KOBJ_N_PER_MM = 1e-6
 MAX_KR_OVER_KM = 1000.0
 MAX_GRASP_FORCE_N = 100.0
+#: The largest gauge-grid power density a design file accepts (W/mm^2, about 65 W/in^2): far
+#: past TN-502's 1-2 W/in^2, where a foil grid on a thin web runs tens of kelvin hot.
+MAX_GRID_POWER_DENSITY_W_PER_MM2 = 0.1

@@ -38,6 +38,12 @@ Keys (units in the names):
   (the grasp's force mode, :mod:`tactcad.in_use.grasp_experiment`, on the design's stated
   ``[grasper_jaw]`` and ``[tissue_slab]`` or the default jaw and tissue) every element's force on its spring must stay within its overload limit
   (yield with the safety factor, the gauge's largest strain), a hard stop taking the rest; never derived (without it nothing is checked).
+* ``grid_power_density_W_per_mm2``: the largest power density the lab accepts in the gauge's
+  grid (W/mm^2), stated where a design deliberately excites its gauges above
+  Micro-Measurements TN-502's thin-section guidance (2 W/in^2: guidance on self-heating,
+  which costs zero stability, not a strength limit); without it that guidance is the
+  target, and a grid above it, short of the failure by heat, is undecided (the lab has not
+  said it accepts the offset).
 * ``source``: where the values come from (a citation); only a design whose
   source cites the paper gets the paper's loads, samples and text.
 """
@@ -58,13 +64,13 @@ REQUIREMENT_KEYS = ("full_scale_force_N", "kobj_range_N_per_mm", "kr_over_km",
 
 #: Requirements checked only when the file states them (never derived).
 STATED_ONLY_KEYS = ("min_first_resonance_Hz", "max_thermal_drift_N_per_K", "max_crosstalk_rel",
-                    "kobj_accuracy_rel", "max_grasp_force_N")
+                    "kobj_accuracy_rel", "max_grasp_force_N", "grid_power_density_W_per_mm2")
 
 
 # the ranges, kept where nothing heavy is imported (a command's --help reads them)
 from tactcad.design.requirement_limits import (  # noqa: E402,F401 (their names here too)
-    MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N, MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM,
-    MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
+    MAX_FULL_SCALE_FORCE_N, MAX_GRASP_FORCE_N, MAX_GRID_POWER_DENSITY_W_PER_MM2,
+    MAX_KOBJ_N_PER_MM, MAX_KR_OVER_KM, MIN_FULL_SCALE_FORCE_N, MIN_KOBJ_N_PER_MM)
 
 
 class RequirementsSection(Section):
@@ -100,6 +106,10 @@ class RequirementsSection(Section):
     max_grasp_force_N: number(0.0, MAX_GRASP_FORCE_N, lo_open=True, unit="N",
                               why="grasp force at which every element must stay within its "
                                   "overload limit") = None
+    grid_power_density_W_per_mm2: number(0.0, MAX_GRID_POWER_DENSITY_W_PER_MM2, lo_open=True,
+                                         unit="W/mm^2",
+                                         why="largest gauge-grid power density the lab "
+                                             "accepts (above TN-502's guidance)") = None
     source: Text = None
 
 
@@ -116,6 +126,11 @@ def stated_kobj_accuracy(raw: Mapping[str, Any]) -> float | None:
 def stated_max_grasp_force(raw: Mapping[str, Any]) -> float | None:
     """``requirements.max_grasp_force_N`` (N), or None when not stated."""
     return stated_number(raw, "max_grasp_force_N")
+
+
+def stated_grid_power_density(raw: Mapping[str, Any]) -> float | None:
+    """``requirements.grid_power_density_W_per_mm2`` (W/mm^2), or None when not stated."""
+    return stated_number(raw, "grid_power_density_W_per_mm2")
 
 
 def stated_number(raw: Mapping[str, Any], key: str) -> float | None:

@@ -362,13 +362,14 @@ def _verdict(record: dict) -> str:
 def verification_row(r: dict) -> dict:
     """One requirement as the page's table shows it (texts, in the CLI's columns;
     the page's script lists them in this order, ``VERIFY_COLUMNS``)."""
-    from tactcad.studies.verification import binding_text, margin_text, target_text, value_text
+    from tactcad.studies.verification import (binding_text, margin_text, predicted_text,
+                                              target_text)
 
     err = r.get("error_estimate_rel")
     shown = {**r, "verdict": _verdict(r)}  # a row reported, not judged: no target, no margin
     return {"requirement": r["requirement"], "verdict": shown["verdict"].upper(),
             "target": target_text(shown),
-            "predicted": value_text(r.get("predicted"))
+            "predicted": predicted_text(r)
             + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
             "margin": margin_text(shown),
             "binds": binding_text(r), "model": r.get("model", "")}

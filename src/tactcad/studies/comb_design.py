@@ -2820,6 +2820,30 @@ def built_stiffness_words(plan) -> str:
     return f"as written K_m = {span(k_m)} N/mm, K_r/K_m = {span(ratio)} (closed form)"
 
 
+def resolution_written(d: dict, plan: Any, targets: Targets) -> dict[str, str]:
+    """Write into ``d``'s ``[requirements]`` the K_obj resolution the comb reaches, as a
+    stacked array's design writes it
+    (:func:`tactcad.studies.inverse_design.written_kobj_resolution`: the rule is the
+    construction's neither), where it is one a design file may state (at most
+    :data:`~tactcad.studies.verification.UNREADABLE_RESOLUTION_REL`; a comb that reads
+    worse is left to verify's derivation, which fails it).
+
+    Args:
+        d: the chosen tables (changed in place). plan: their plan. targets: the targets.
+
+    Returns:
+        ``{"requirements.kobj_resolution_rel": reason}``, or ``{}`` where nothing is written.
+    """
+    from tactcad.studies.inverse_design import written_kobj_resolution
+    from tactcad.studies.verification import UNREADABLE_RESOLUTION_REL
+
+    value, why = written_kobj_resolution(plan, targets)
+    if not value <= UNREADABLE_RESOLUTION_REL:  # inf or NaN: none a file may state
+        return {}
+    d["requirements"]["kobj_resolution_rel"] = value
+    return {"requirements.kobj_resolution_rel": why}
+
+
 def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
           columns: int, fasteners: tuple[FastenerTry, ...] = ()) -> dict:
     """The chosen tables with their name, description and every reason."""
@@ -2873,6 +2897,7 @@ def named(d: dict, name: str, targets: Targets, room: Any, best: CombCandidate,
         **({"requirements.max_grasp_force_N": "Asked (--max-grasp-force)."}
            if "max_grasp_force_N" in d["requirements"] else {}),
     })
+    why.update(resolution_written(d, best.plan, targets))
     grade = d.get("material", {}).get("grade")
     if grade and "material.grade" not in why:  # the library's grade, with its sources
         from tactcad.vocabulary.material_library import material_grade

@@ -1470,30 +1470,49 @@ def requirements_table(targets: Targets,
         key, starting with :data:`~tactcad.design.requirements_section.DERIVED_BY_DESIGN`
         so that ``verify`` does not call it stated by the lab).
     """
-    from tactcad.design.requirements_section import DERIVED_BY_DESIGN
-    from tactcad.studies.verification import (element_figures, kobj_resolution_requirement,
-                                              sensing_units)
-
     plan = plan_from_dict(data, source="<inverse design>")
     lo, hi = targets.k_obj_range_N_per_mm
-    F = targets.full_scale_force_N
-    units = sensing_units(plan, element_figures(plan, "closed-form"))
-    resolution, worst = kobj_resolution_requirement(units, (lo, hi), F)
-    table = {"full_scale_force_N": float(F),
+    resolution, why = written_kobj_resolution(plan, targets)
+    table = {"full_scale_force_N": float(targets.full_scale_force_N),
              "kobj_range_N_per_mm": [float(lo), float(hi)],
              "kr_over_km": float(targets.kr_over_km),
              "kobj_resolution_rel": resolution}
     # no k_tolerance_rel: a band derived from the design's own K spread could never fail;
     # verify reports the spread as a figure (and notes a large one) until the lab states one
-    # what the design reaches, not what the lab asked: a lab's own value replaces the reason
-    reasons = {
-        "kobj_resolution_rel": (
-            f"{DERIVED_BY_DESIGN}: the worst K_obj resolution over {lo:g}-{hi:g} N/mm at "
-            f"the full-scale force {F:g} N, {100 * worst:.3g} % (closed form, each element "
-            "read through the design's [readout] chain), padded by its error and rounded up; "
-            "state the resolution your use needs in its place (and this reason with it) to "
-            "hold the design to it.")}
-    return table, reasons
+    return table, {"kobj_resolution_rel": why}
+
+
+def written_kobj_resolution(plan: Plan, targets: Targets) -> tuple[float, str]:
+    """The K_obj resolution requirement ``tactcad design`` writes, for every construction
+    (a stacked array's :func:`requirements_table`, a comb's), and its reason: the worst
+    K_obj resolution over the targets' range at their full-scale force, each element read
+    through the design's own read-out chain (closed form), padded by its error and rounded
+    up (:func:`tactcad.studies.verification.kobj_resolution_requirement`). What the design
+    reaches, not what the lab asked: the reason starts with
+    :data:`~tactcad.design.requirements_section.DERIVED_BY_DESIGN`, so ``verify`` judges it
+    as a guard on later edits, not as the lab's; a lab's own value replaces it.
+
+    Args:
+        plan: the designed plan. targets: the targets it was designed for (N/mm, N).
+
+    Returns:
+        (the requirement, relative; possibly above what a design file may state, or inf
+        where no unit reads K_obj; the reason).
+    """
+    from tactcad.design.requirements_section import DERIVED_BY_DESIGN
+    from tactcad.studies.verification import (element_figures, kobj_resolution_requirement,
+                                              sensing_units)
+
+    lo, hi = targets.k_obj_range_N_per_mm
+    F = targets.full_scale_force_N
+    units = sensing_units(plan, element_figures(plan, "closed-form"))
+    resolution, worst = kobj_resolution_requirement(units, (lo, hi), F)
+    return resolution, (
+        f"{DERIVED_BY_DESIGN}: the worst K_obj resolution over {lo:g}-{hi:g} N/mm at "
+        f"the full-scale force {F:g} N, {100 * worst:.3g} % (closed form, each element "
+        "read through the design's [readout] chain), padded by its error and rounded up; "
+        "state the resolution your use needs in its place (and this reason with it) to "
+        "hold the design to it.")
 
 
 def report_points(targets: Targets, n: int = REPORT_POINTS) -> np.ndarray:

@@ -340,12 +340,20 @@ def full_scale_judgement(plan, model: str, records) -> dict:
     (the stress figures of ``records`` reused; ``element_force_limit_N`` is the
     lowest element force limit, the largest force every element carries).
 
+    The verdict is verify's on its ``full_scale_force_N`` row, by the same rule
+    (:func:`tactcad.mechanics.verdicts.verdict`): margin limit / rating - 1 against the
+    binding limit's error estimate, so a rating met within that error is ``undecided``.
+
     Returns:
         ``{"full_scale_force_N", "reason", "element_force_limit_N", "binding_limit",
-        "binding_element", "met", "model"}`` (N).
+        "binding_element", "margin_rel", "error_estimate_rel", "verdict", "met",
+        "model"}`` (N; relative): ``verdict`` one of ``pass``, ``fail``, ``undecided``, the
+        judgement; ``met`` the nominal comparison alone (limit >= rating, its error aside),
+        as verify's ``pass`` and the manifest's ``full_scale_force.met``.
     """
     from tactcad.mechanics.element_strength import ElementStress
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
+    from tactcad.mechanics.verdicts import verdict
     from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
@@ -356,10 +364,14 @@ def full_scale_judgement(plan, model: str, records) -> dict:
                 for r in records}
     errors = {r.part_name: r.stress_error_rel for r in records}
     b = binding(plan_limits(plan, model, stresses, errors))
-    return {"full_scale_force_N": req.full_scale_force_N,
+    rated = req.full_scale_force_N
+    margin = b.force_N / rated - 1.0
+    said = verdict(margin, b.error_estimate_rel, 0.0, b.force_N >= rated)
+    return {"full_scale_force_N": rated,
             "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
             "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
-            "met": b.force_N >= req.full_scale_force_N, "model": model}
+            "margin_rel": margin, "error_estimate_rel": b.error_estimate_rel,
+            "verdict": said, "met": b.force_N >= rated, "model": model}
 
 
 #: Largest further tip mass (mg) a modal record takes (``--tip-mass-mg``).

@@ -1101,27 +1101,40 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
 GRID_POWER_REQUIREMENT = "grid_power_density_W_per_mm2"
 
 
-def grid_power_density_verdict(density_W_per_mm2: float, grid_rise_K: float) -> str:
+def grid_power_density_verdict(density_W_per_mm2: float, grid_rise_K: float,
+                               accepted_W_per_mm2: float | None = None) -> str:
     """The verdict on a gauge's excitation by Micro-Measurements TN-502.
+
+    TN-502's power densities are guidance on self-heating (an offset that warms up and is
+    tared, zero stability spent), not a strength limit: a lab may accept more
+    (``requirements.grid_power_density_W_per_mm2``); the grid's rise past the backing's
+    derating fails whatever it accepts.
 
     Args:
         density_W_per_mm2: the grid's power density (W/mm^2).
         grid_rise_K: the grid's temperature rise above the element (K).
+        accepted_W_per_mm2: the density the design states it accepts (W/mm^2), or None.
 
     Returns:
-        ``pass`` within TN-502's thin-section guidance (at most 2 W/in^2, the sections these
-        webs are); ``fail`` when the grid runs more than
+        ``fail`` when the grid runs more than
         :data:`~tactcad.design.readout_section.TN502_HIGH_EXCITATION_DERATING_K` above the
-        element (past the largest backing derating TN-502 names for high excitation);
-        otherwise ``undecided`` (above the guidance: whether the element sinks the heat as a
-        heavier section would is not modelled).
+        element (past the largest backing derating TN-502 names for high excitation) or above
+        the density the design accepts; ``pass`` within that density, or, when the design
+        states none, within TN-502's thin-section guidance (at most 2 W/in^2, the sections
+        these webs are); otherwise ``undecided`` (above the guidance, which the design has
+        not said it accepts; whether the element sinks the heat as a heavier section would is
+        not modelled).
     """
     from tactcad.design.readout_section import (TN502_HIGH_EXCITATION_DERATING_K,
                                                 TN502_THIN_SECTION_W_PER_MM2)
 
+    if grid_rise_K > TN502_HIGH_EXCITATION_DERATING_K:
+        return "fail"
+    if accepted_W_per_mm2 is not None:
+        return "pass" if density_W_per_mm2 <= accepted_W_per_mm2 * (1 + 1e-9) else "fail"
     if density_W_per_mm2 <= TN502_THIN_SECTION_W_PER_MM2[1] * (1 + 1e-9):
         return "pass"
-    return "fail" if grid_rise_K > TN502_HIGH_EXCITATION_DERATING_K else "undecided"
+    return "undecided"
 
 
 def grid_power_density_record(plan: Plan) -> dict:
@@ -1131,7 +1144,8 @@ def grid_power_density_record(plan: Plan) -> dict:
     The quarter-bridge grid dissipates V_ex^2 / (4 R_g) over its area and warms above the
     element by that power over the grid-to-element heat transfer
     (:func:`tactcad.mechanics.thermal_drift.self_heating_K`, what ``tactcad thermal`` prints).
-    Target: TN-502's top for thin sections, 2 W/in^2; margin target / density - 1; the verdict
+    Target: the density the design accepts (``requirements.grid_power_density_W_per_mm2``),
+    else TN-502's top for thin sections, 2 W/in^2; margin target / density - 1; the verdict
     is :func:`grid_power_density_verdict`'s (the rise decides a failure). Exact in the chain's
     values and the same at every level: no error estimate (None); an ``undecided`` verdict is
     the band between the guidance and the failure, not a margin inside an error.
@@ -1141,17 +1155,28 @@ def grid_power_density_record(plan: Plan) -> dict:
 
     Returns:
         The record: ``predicted`` the grid's power density (W/mm^2), ``grid_rise_K`` and its
-        limit ``grid_rise_limit_K`` (K), ``excitation_V`` (V), ``basis`` the sources.
+        limit ``grid_rise_limit_K`` (K), ``excitation_V`` (V), ``guidance_W_per_mm2``
+        (TN-502's), ``basis`` the sources.
     """
     from tactcad.design.readout_section import (TN502_HIGH_EXCITATION_DERATING_K,
                                                 TN502_THIN_SECTION_W_PER_MM2)
+    from tactcad.design.requirements_section import stated_grid_power_density
     from tactcad.mechanics.readout_chain import readout_chain
     from tactcad.mechanics.thermal_drift import self_heating_K
 
     chain = readout_chain(plan)
     density = chain.grid_power_density_W_per_mm2
     _, rise = self_heating_K(chain)
-    target = TN502_THIN_SECTION_W_PER_MM2[1]
+    guidance = TN502_THIN_SECTION_W_PER_MM2[1]
+    accepted = stated_grid_power_density(plan.raw)
+    target = guidance if accepted is None else accepted
+    said = grid_power_density_verdict(density, rise, accepted)
+    why = (f"the design accepts {645.16 * accepted:.3g} W/in^2 "
+           f"(requirements.grid_power_density_W_per_mm2), TN-502's thin-section guidance "
+           f"(1-2 W/in^2) being on self-heating, not a limit" if accepted is not None else
+           "thin sections 1-2 W/in^2, guidance on self-heating: above it undecided short of "
+           "the failure, until the design states the density it accepts "
+           "(requirements.grid_power_density_W_per_mm2)")
     # no error estimate: the figures are exact in the chain's values, and the band between
     # the guidance and the failure is the rule's own (how well the element sinks the heat is
     # not modelled), not a margin inside a model's error
@@ -1159,12 +1184,12 @@ def grid_power_density_record(plan: Plan) -> dict:
                   "closed-form", density <= target * (1 + 1e-9),
                   excitation_V=chain.excitation_V, grid_rise_K=rise,
                   grid_rise_limit_K=TN502_HIGH_EXCITATION_DERATING_K,
-                  verdict=grid_power_density_verdict(density, rise),
+                  guidance_W_per_mm2=guidance, verdict=said,
                   basis=(f"Micro-Measurements TN-502: {645.16 * density:.3g} W/in^2 in the grid at "
-                         f"{chain.excitation_V:g} V (thin sections 1-2 W/in^2); the grid "
+                         f"{chain.excitation_V:g} V ({why}); the grid "
                          f"{rise:.3g} K above the element (tactcad thermal), fails past "
                          f"{TN502_HIGH_EXCITATION_DERATING_K:g} K, the largest backing derating "
-                         f"TN-502 names for high excitation, undecided above the guidance short of that"))
+                         f"TN-502 names for high excitation"))
     return rec
 
 
@@ -1417,11 +1442,17 @@ def max_grasp_force_record(plan: Plan, fig: Figures, req: Requirements) -> dict 
                 "lists them)" if past_fatigue else ""))
     columns = grasp_force_columns(target, w["margin_rel"], w["on_stop"]) \
         if w["margin_rel"] is not None else {"predicted": None, "margin_rel": None}
+    # no grasp force predicted (the deciding element on its stop): say what is predicted
+    stop_words = {"predicted_words": f"on its stop: element {w['element']} carries "
+                                     f"{w['element_force_N']:.4g} N (limit "
+                                     f"{w['overload_limit_N']:.4g} N)"} \
+        if columns["predicted"] is None and w["on_stop"] else {}
     return _record("max_grasp_force_N", target, columns["predicted"], error,
                    columns["margin_rel"], fig.model, not over, verdict=w["verdict"],
                    binding_element=w["element"], element_force_N=w["element_force_N"],
                    overload_limit_N=w["overload_limit_N"], binding_words=words,
                    rated_force_N=rated, elements=items, grasp=grasp_summary(result),
+                   **stop_words,
                    over_limit=[f"element {it['element']}: {it['element_force_N']:.4g} N over "
                                f"its overload limit {it['overload_limit_N']:.4g} N"
                                for it in over],
@@ -1940,16 +1971,46 @@ def matrix_table(records: list[dict]) -> str:
             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in records:
         rows.append(f"| {r['requirement']} | {target_text(r)} | "
-                    f"{value_text(r['predicted'])} | "
+                    f"{predicted_text(r)} | "
                     f"{percent_text(r['error_estimate_rel'], sign=False)} | "
                     f"{margin_text(r)} | {r['model']} | {r['verdict'].upper()} | "
                     f"{binding_text(r)} |")
-    for r in records:
-        for lim in r.get("limits", ()):
-            rows.append(f"|   limit: {lim['words']} (element {lim['element']}) | | "
-                        f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
-                        f"{'binds' if lim['binding'] else ''} | |")
+        rows += limit_rows(r)  # under the requirement they belong to
     return "\n".join(rows)
+
+
+def limit_rows(record: dict) -> list[str]:
+    """The table rows of a record's force limits (the full-scale force's: yield, fatigue,
+    the gauge's strains, ...; ``binds`` on the one that binds), each named ``limit:``, to
+    follow that record's own row; none for a record without limits.
+
+    Args:
+        record: a verification record (``limits``: N, relative errors).
+
+    Returns:
+        Markdown table rows.
+    """
+    return [f"|   limit: {lim['words']} (element {lim['element']}) | | "
+            f"{lim['force_N']:.4g} N | {100 * lim['error_estimate_rel']:.2f} % | | | "
+            f"{'binds' if lim['binding'] else ''} | |"
+            for lim in record.get("limits", ())]
+
+
+def predicted_text(record: dict) -> str:
+    """A record's prediction as verify, check and the review page show it:
+    :func:`value_text` of ``predicted``, or, where the record predicts no figure in the
+    target's quantity, the words saying what it predicts instead (``predicted_words``: a
+    grasp whose deciding element rests on its stop, with the force that element carries).
+
+    Args:
+        record: a verification record.
+
+    Returns:
+        The text.
+    """
+    if record.get("predicted") is None and record.get("predicted_words"):
+        return record["predicted_words"]
+    return value_text(record.get("predicted"))
 
 
 def target_text(record: dict) -> str:
