@@ -130,6 +130,8 @@ class DieDesign:
         source: the file.
         strength: the file's Weibull pair, or None.
         attach: the file's die attach, or None (the mount's assumption).
+        stated: the ``[die]`` keys the file (with its overrides) states; a key left out
+            takes its default.
     """
 
     die: DieSection
@@ -137,6 +139,7 @@ class DieDesign:
     source: Path
     strength: WeibullPair | None = None
     attach: DieAttach | None = None
+    stated: frozenset = frozenset()
 
 
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
@@ -176,7 +179,8 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
                                      alternatives=[{"option": f'die.name = "{cleaned}"',
                                                     "words": CLEANED_CELL_NAME_WORDS}])])
     problems.raise_if_any()
-    return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach))
+    return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach),
+                     frozenset(data.get(DIE_TABLE) or {}))
 
 
 def attach_of(section: DieAttachSection | None) -> DieAttach | None:
