@@ -58,7 +58,9 @@ class DieSection(Section):
     name: str = DEFAULT_DIE_NAME
     kobj_resolution_rel: number(0.0, 1.0, lo_open=True, unit="",
                                 why="the K_obj error the read-out noise may leave anywhere in "
-                                    "the range (1 sigma)") = DEFAULT_KOBJ_RESOLUTION_REL
+                                    "the range (1 sigma; left out, the die is sized to the "
+                                    "default and verify reports it, not judged)"
+                                ) = DEFAULT_KOBJ_RESOLUTION_REL
     kobj_accuracy_rel: number(0.0, 10.0, lo_open=True, unit="",
                               why="the largest K_obj error the die may read with over its "
                                   "range: the worst root sum square of its K_obj budget "
@@ -66,7 +68,8 @@ class DieSection(Section):
     max_grasp_force_N: number(0.0, MAX_GRASP_FORCE_N, lo_open=True, unit="N",
                               why="the largest grasp force the die must survive in its jaw: "
                                   "at it no beam past its breaking force, a hard stop taking "
-                                  "the rest (not judged when left out)") = None
+                                  "the rest, each post and the cavity floor under it within "
+                                  "its strength (not judged when left out)") = None
     root_fillet_um: number(ROOT_FILLET_RANGE_UM[0], ROOT_FILLET_RANGE_UM[1], lo_open=True,
                            unit="um",
                            why="the fillet where each beam's sidewalls meet the frame, drawn "
