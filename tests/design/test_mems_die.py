@@ -1428,6 +1428,8 @@ def test_the_robotic_jaw_example_seats_its_die_in_the_labs_own_pocket():
     assert mount.pocket_depth_mm == 0.85 and mount.carrier_mm > CARRIER_MM
     assert mount.die_z0_mm - mount.carrier_mm - mount.attach_mm == pytest.approx(2.6 - 0.85)
     verdicts = {r["requirement"]: r["verdict"] for r in project.verify()["matrix"]}
+    # the K_obj resolution the file does not state is reported, not judged
+    assert verdicts.pop("kobj_resolution_rel") == "info"
     assert set(verdicts.values()) == {"pass"}, verdicts
     assert plan.weibull == md.DESIGN_STRENGTH
 
