@@ -1454,6 +1454,8 @@ def test_the_robotic_jaw_example_seats_its_die_in_the_labs_own_pocket():
     assert mount.pocket_depth_mm == 0.85 and mount.carrier_mm > CARRIER_MM
     assert mount.die_z0_mm - mount.carrier_mm - mount.attach_mm == pytest.approx(2.6 - 0.85)
     verdicts = {r["requirement"]: r["verdict"] for r in project.verify()["matrix"]}
+    # the K_obj resolution the file does not state is reported, not judged
+    assert verdicts.pop("kobj_resolution_rel") == "info"
     assert set(verdicts.values()) == {"pass"}, verdicts
     assert plan.weibull == md.DESIGN_STRENGTH
 
@@ -1463,7 +1465,8 @@ def test_the_robotic_jaw_example_seats_its_die_in_the_labs_own_pocket():
 def test_the_shipped_dies_verify_every_row_pass_beyond_its_error(example):
     """The shipped dies are rated by what design allows with each limit's model error kept
     (the 8 mm robotic die at 10 mN verified its stops +4.1 % against their 6 %: UNDECIDED):
-    every row of their verify passes, each margin beyond its error, and the rating's limits
+    every judged row of their verify passes, each margin beyond its error (the K_obj
+    resolution they do not state is reported, not judged), and the rating's limits
     each clear their design error."""
     import tactcad
     from tactcad.project_folder import die_examples
@@ -1472,6 +1475,9 @@ def test_the_shipped_dies_verify_every_row_pass_beyond_its_error(example):
     report = project.verify()
     assert not report["undecided"]
     for row in report["matrix"]:
+        if row["requirement"] == "kobj_resolution_rel":  # not stated: reported, not judged
+            assert row["verdict"] == "info", row
+            continue
         assert row["verdict"] == "pass", row
         assert row["margin_rel"] - (row.get("allowed_margin_rel") or 0.0) \
             > row["error_estimate_rel"] > 0, row

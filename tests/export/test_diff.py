@@ -169,8 +169,10 @@ def test_two_dies_differ_in_their_beams_and_derived_values_not_only_in_bytes(tmp
     assert d.elements == [{"element": 1, "changes": {
         "full_scale_force_N": {"before": 0.008, "after": 0.006}}}]
     derived = {r["name"]: (r["before"], r["after"], r["unit"]) for r in d.derived}
-    assert derived == {"die.full_scale_force_N": (0.008, 0.006, "N"),
-                       "die.cavity_depths_um.reference": (4.0, 3.0, "um"),
+    # the rating is the die file's own: stated, not derived
+    assert d.stated == [{"name": "die.full_scale_force_N", "before": 0.008, "after": 0.006,
+                         "unit": "N"}]
+    assert derived == {"die.cavity_depths_um.reference": (4.0, 3.0, "um"),
                        "die.root_peak_stress_MPa_at_rated_force.reference":
                            (27e3 * 0.008, 27e3 * 0.006, "MPa")}
     assert "derived       die.cavity_depths_um.reference: 4 -> 3 um" in d.lines()

@@ -290,6 +290,9 @@ def test_design_refuses_a_rating_inside_a_limits_model_error_and_pastes_one_veri
     for limit_and_words, error in zip(md.rating_limits(plan), md.rating_limit_errors(plan)):
         assert limit_and_words[0] / plan.full_scale_force_N - 1.0 > error
     for r in die_verification(plan):
+        if r["requirement"] == "kobj_resolution_rel":  # not stated: reported, not judged
+            assert r["verdict"] == "info", r
+            continue
         assert r["verdict"] == "pass", r
         assert r["margin_rel"] - r.get("allowed_margin_rel", 0.0) > r["error_estimate_rel"], r
 
@@ -361,6 +364,9 @@ def test_design_pastes_the_rating_with_its_error_room_and_verify_passes_it(tmp_p
     report = json.loads(run_cli("verify", "--json", cwd=tmp_path / "edge").stdout)
     assert not report["undecided"]
     for r in report["matrix"]:
+        if r["requirement"] == "kobj_resolution_rel":  # not stated: reported, not judged
+            assert r["verdict"] == "info", r
+            continue
         assert r["verdict"] == "pass", r
         assert r["margin_rel"] - (r.get("allowed_margin_rel") or 0.0) \
             > r["error_estimate_rel"] > 0, r
@@ -371,10 +377,12 @@ def test_a_die_with_a_comfortable_margin_still_passes(die):
     from tactcad.products.silicon_die.studies.die_verification import die_verification
 
     rows = {r["requirement"]: r for r in die_verification(die)}
-    for key in ("full_scale_force_N", "hard_stop", "kr_over_km", "kobj_resolution_rel"):
+    for key in ("full_scale_force_N", "hard_stop", "kr_over_km"):
         clearance = rows[key]["margin_rel"] - rows[key].get("allowed_margin_rel", 0.0)
         assert clearance > rows[key]["error_estimate_rel"] > 0, rows[key]
         assert rows[key]["verdict"] == "pass", rows[key]
+    # the die states no K_obj resolution: its figure reported, not judged
+    assert rows["kobj_resolution_rel"]["verdict"] == "info", rows["kobj_resolution_rel"]
 
 
 def test_every_die_row_carries_a_finite_error_of_its_model(edge_die):

@@ -11,7 +11,7 @@ import pytest
 
 from conftest import run_cli
 
-COUNTS = re.compile(r"^(\d+) passed, (?:(\d+) undecided, )?(\d+) failed$", re.M)
+COUNTS = re.compile(r"^(\d+) passed, (?:(\d+) undecided, )?(\d+) failed(?:, (\d+) info)?$", re.M)
 
 
 def _total(stdout: str) -> int:

@@ -162,18 +162,19 @@ def test_a_dies_check_leaves_hand_edits_as_they_are_and_fails_them(die_folder):
 def test_a_die_takes_a_grasp_force_judged_as_grasp_computes_it(die_folder):
     """`max_grasp_force_N` in a die's file: verify closes the die's jaw to it on the
     default tissue (the grasp command's own defaults) and judges each beam against its
-    breaking force, the stops taking the rest; a force the jaw cannot reach fails. With the
-    posts on their stops (whose strength is not judged) and the face in the tissue (past the
-    punch model) the row is undecided, not passed; its predicted figure is a grasp force, as
-    its target is, or none where the stops hold the beams."""
+    breaking force, the stops taking the rest, and the stops' load path (the post, the
+    cavity floor); a force the jaw cannot reach fails. With the posts on their stops and
+    the face in the tissue (the whole grasp on the posts: an upper bound) the row is still
+    judged; its predicted figure is a grasp force, as its target is."""
     r = run_cli("verify", "--set", "die.max_grasp_force_N=2", "--json", cwd=die_folder)
     assert r.returncode == 0, r.stdout
     row = next(x for x in json.loads(r.stdout)["matrix"]
                if x["requirement"] == "max_grasp_force_N")
-    assert "not judged" in row["binding_words"] and "past the punch model" in row["binding_words"]
-    assert row["verdict"] == "undecided" and row["predicted"] is None
+    assert "not judged" not in row["binding_words"] and "upper bound" in row["binding_words"]
+    assert row["verdict"] == "pass" and row["binding_item"].startswith("post")
+    assert row["predicted"] == pytest.approx(2 * (1 + row["margin_rel"]), rel=1e-9)
     g = json.loads(run_cli("grasp", "--force-N", "2", "--json", cwd=die_folder).stdout)
-    beam = int(row["binding_words"].split(":")[0].split()[-1])
+    beam = int(row["binding_words"].split("; beam ")[1].split(":")[0])
     tip = next(t for t in g["grasp"]["tips"] if t["site"] == beam)
     assert tip["element_force_N"] == pytest.approx(row["element_force_N"], rel=1e-12)
     light = run_cli("verify", "--set", "die.max_grasp_force_N=0.005", "--json", cwd=die_folder)

@@ -862,8 +862,9 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
                               + (" (--columns)." if args.columns else " (the default)."),
                "die.pitch_um": "The die command's default spacing."}
     grasp = getattr(args, "max_grasp_force", None)
+    grasp_row = None
     if grasp is not None:  # judged as verify judges it, before anything is written
-        _die_survives_grasp(plan, jaw, grasp)
+        grasp_row = _die_survives_grasp(plan, jaw, grasp)
         reasons["die.max_grasp_force_N"] = "Asked (--max-grasp-force)."
     accuracy = getattr(args, "kobj_accuracy", None)
     if accuracy is not None:
@@ -888,6 +889,7 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
         write_bytes_atomic(path, text.encode("utf-8"))
     report = {"construction": DIE_CONSTRUCTION, "design": str(path), "jaw": room.label,
               "left_out": [*left, *why], "die": plan.as_json(),
+              **({} if grasp_row is None else {"max_grasp_force": _grasp_summary(grasp_row)}),
               "next": (f"cd {shown_path(str(folder))} && tactcad export --out exports && "
                        "tactcad check --out exports" if folder is not None else
                        f"tactcad die --design {shown_path(str(path))} --out die")}
@@ -902,31 +904,95 @@ def write_die_design(args: argparse.Namespace, targets, room, path: Path, folder
             print(f"  not searched: {line}")
         print(f"  SOI device layer {plan.stack.device_um:g} um, beams {b_r.width_um:g} um wide: "
               f"reference {b_r.length_um:.4g} um, measuring {b_m.length_um:.4g} um long")
+        if grasp_row is not None:
+            print(f"  {_grasp_line(grasp_row)}")
         print(f"  next: {report['next']} (masks, wafer, STEP, traveller, review page, "
               "KLayout DRC)")
     return 0
 
 
-def _die_survives_grasp(plan, jaw, grasp_N: float) -> None:
+def _die_survives_grasp(plan, jaw, grasp_N: float) -> dict:
     """A die asked to survive the grasp ``grasp_N`` (N) in its jaw (``jaw``: a trocar class
     or a jaw table), judged by verify's own row
-    (:func:`tactcad.products.silicon_die.studies.die_verification.die_verification`).
+    (:func:`tactcad.products.silicon_die.studies.die_verification.grasp_row`: the beams, the
+    posts and the cavity floors under the stops).
+
+    Returns:
+        The row (its verdict ``pass`` or ``undecided``).
 
     Raises:
-        DesignError: ``--max-grasp-force`` the die does not survive or the jaw cannot reach.
+        DesignError: ``--max-grasp-force`` the die does not survive or the jaw cannot reach,
+            with a grasp that passes to paste.
     """
-    from dataclasses import replace
-
     from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.studies.die_verification import die_verification
+    from tactcad.products.silicon_die.studies.die_verification import grasp_row
 
-    judged = replace(plan, max_grasp_force_N=float(grasp_N))
     stated = {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw
-    row = next(r for r in die_verification(judged, die_mount(judged, stated))
-               if r["requirement"] == "max_grasp_force_N")
+    mount = die_mount(plan, stated)
+    row = grasp_row(plan, mount, grasp_N)
     if row["verdict"] == "fail":
         raise DesignError("--max-grasp-force", grasp_N, "a grasp the die survives in its jaw",
-                          row["binding_words"], alternatives=_reachable_grasp(judged, stated))
+                          row["binding_words"],
+                          alternatives=_surviving_grasp(plan, mount, row, grasp_N))
+    return row
+
+
+def _grasp_summary(row: dict) -> dict:
+    """What design reports of a die's grasp row: its verdict, target and predicted grasp (N),
+    margin and error (relative) and the item that decides it."""
+    return {k: row.get(k) for k in ("verdict", "target", "predicted", "margin_rel",
+                                    "error_estimate_rel", "binding_item")}
+
+
+def _grasp_line(row: dict) -> str:
+    """The line design prints for a die's grasp row (N, %): judged as verify judges it; an
+    undecided one says why."""
+    head = (f"grasp {row['target']:g} N: {row['verdict'].upper()}, deciding "
+            f"{row.get('binding_item') or 'none'}")
+    if row.get("margin_rel") is not None:
+        head += (f", margin {100 * row['margin_rel']:+.3g} % (error "
+                 f"{100 * row['error_estimate_rel']:.2g} %)")
+    if row["verdict"] == "undecided":
+        head += ": the margin is inside the model's error, so verify cannot decide it"
+    return head
+
+
+def _surviving_grasp(plan, mount, row: dict, grasp_N: float) -> list[dict]:
+    """The grasp to paste for a refused ``--max-grasp-force``: one whose verify row passes
+    (:func:`tactcad.products.silicon_die.studies.die_verification.surviving_grasp_N`), from
+    at most the jaw's reach closed flat on the default tissue (:func:`_jaw_reach_N`) and the
+    grasp the refused row predicts less its error, two digits rounded down; none when no
+    grasp passes."""
+    from tactcad.products.silicon_die.studies.die_verification import (grasp_row,
+                                                                       surviving_grasp_N)
+
+    reach = _jaw_reach_N(plan, mount)
+    start = min(grasp_N, reach)
+    if row.get("predicted") is None and reach < grasp_N:  # out of reach: judged at the reach
+        row = grasp_row(plan, mount, start)
+        if row["verdict"] == "pass":
+            start = min(start, row["predicted"] or start)
+    if row.get("predicted"):
+        start = min(start, row["predicted"] / (1.0 + row["error_estimate_rel"]))
+    paste = surviving_grasp_N(plan, mount, start)
+    if paste is None:
+        return []
+    return [{"option": f"--max-grasp-force {paste:g}",
+             "words": f"a grasp this die survives in its jaw, its beams, posts and cavity "
+                      f"floors judged as verify judges them: the grasp the row predicts less "
+                      f"its error, two digits rounded down (the jaw reaches {reach:.4g} N "
+                      f"closed flat on the default tissue)"}]
+
+
+def _jaw_reach_N(plan, mount) -> float:
+    """The grasp force of the die's jaw closed flat on the default tissue (N)."""
+    import math
+
+    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
+
+    lo, hi = plan.kobj_range_N_per_mm
+    return die_grasp(plan, mount, die_jaw(mount, mount.opening_angle_deg), math.sqrt(lo * hi),
+                     angle_deg=0.0).total_force_N
 
 
 def _die_reads_to(plan, accuracy_rel: float) -> None:
@@ -1159,27 +1225,6 @@ def refuse_missed_accuracy(records: list[dict], accuracy_rel: float) -> None:
                            "this design", "the root sum square of its K_obj error budget "
                            "after correction, worst over the K_obj range (tactcad budget)",
                            row.get("error_estimate_rel"))
-
-
-def _reachable_grasp(plan, stated) -> list[dict]:
-    """The grasp to paste when the asked one is out of the jaw's reach: the force of the jaw
-    closed flat on the default tissue, rounded down to two digits (none when it is 0)."""
-    import math
-
-    from tactcad.products.silicon_die.design.die_mount import die_mount
-    from tactcad.products.silicon_die.in_use.die_grasp import die_grasp, die_jaw
-
-    mount = die_mount(plan, stated)
-    lo, hi = plan.kobj_range_N_per_mm
-    flat = die_grasp(plan, mount, die_jaw(mount, mount.opening_angle_deg), math.sqrt(lo * hi),
-                     angle_deg=0.0).total_force_N
-    if not flat > 0:
-        return []
-    digits = 10 ** (math.floor(math.log10(flat)) - 1)
-    paste = math.floor(flat / digits) * digits
-    return [{"option": f"--max-grasp-force {paste:.3g}",
-             "words": f"the most this jaw reaches, closed flat on the default tissue "
-                      f"({flat:.4g} N)"}]
 
 
 def jaw_constructions(args: argparse.Namespace) -> tuple[list, list[str]]:

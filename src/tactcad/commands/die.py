@@ -184,7 +184,10 @@ def die_asked(args: argparse.Namespace) -> dict:
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
             "source": _source_of(Path(args.design), overrides),
             "strength": d.strength,
-            "kobj_resolution_rel": d.die.kobj_resolution_rel, "attach": d.attach,
+            # a resolution the file leaves out is the default's, reported, not judged
+            "kobj_resolution_rel": (d.die.kobj_resolution_rel
+                                    if "kobj_resolution_rel" in d.stated else None),
+            "attach": d.attach,
             "max_grasp_force": d.die.max_grasp_force_N,
             "kobj_accuracy": d.die.kobj_accuracy_rel,
             "root_fillet_um": d.die.root_fillet_um}

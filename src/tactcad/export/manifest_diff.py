@@ -7,7 +7,8 @@
 * elements whose part, arm, stiffness K or strength changed, before and after; a silicon
   die's rows (its manifest's "rows": row 1 reference, row 2 measuring) likewise, each named
   by its number and role and with its own rated force;
-* derived dimensions whose value changed;
+* derived dimensions whose value changed; a product's values its design file states (a
+  silicon die's ``[die]`` keys, :data:`PRODUCT_STATED_KEYS`) listed apart, as stated;
 * drawing sheets added, removed and changed; a new sheet that replaces the
   old sheet of the same element (the element's part was renamed when its arm
   changed) is compared with that sheet;
@@ -53,6 +54,12 @@ ROW_FIELDS = {
 #: A product's own table of derived values in its manifest (a silicon die's "die"), compared
 #: value by value as the array's "derived" list is.
 PRODUCT_SECTIONS = ("die",)
+#: The keys of a product section that its design file states (a silicon die's ``[die]``
+#: table: what the lab asked, or the key's default where the file leaves it out), listed by
+#: the diff as stated, not derived.
+PRODUCT_STATED_KEYS = {"die": ("kr_over_km", "kobj_range_N_per_mm", "full_scale_force_N",
+                               "columns", "pitch_um", "kobj_resolution_rel",
+                               "kobj_accuracy_rel", "max_grasp_force_N", "root_fillet_um")}
 #: Units read from a derived value's name ending (the house's unit suffixes).
 _UNIT_SUFFIXES = (("_N_per_mm", "N/mm"), ("_per_Pa", "1/Pa"), ("_um2", "um^2"), ("_um", "um"),
                   ("_mm", "mm"), ("_MPa", "MPa"), ("_N", "N"), ("_Hz", "Hz"), ("_K", "K"),
@@ -135,6 +142,7 @@ class Diff:
     elements: list = field(default_factory=list)
     rows: list = field(default_factory=list)  # a silicon die's rows
     derived: list = field(default_factory=list)
+    stated: list = field(default_factory=list)  # a product's values its design file states
     sheets: list = field(default_factory=list)
     files: dict = field(default_factory=dict)  # changed, added, removed (paths)
 
@@ -142,12 +150,13 @@ class Diff:
     def changed(self) -> bool:
         """True when anything differs, the bytes of any file included."""
         return bool(any(self.parts.values()) or self.elements or self.rows or self.derived
-                    or self.sheets
+                    or self.stated or self.sheets
                     or any(self.files.values()))
 
     def as_json(self) -> dict:
         return {"old": self.old, "new": self.new, "changed": self.changed, "parts": self.parts,
-                "elements": self.elements, "rows": self.rows, "derived": self.derived, "sheets": self.sheets,
+                "elements": self.elements, "rows": self.rows, "derived": self.derived,
+                "stated": self.stated, "sheets": self.sheets,
                 "files": self.files}
 
     def lines(self) -> list[str]:
@@ -163,9 +172,10 @@ class Diff:
             out.append(f"element {e['element']:<4} " + _fields_text(e["changes"]))
         for r in self.rows:
             out.append(f"{row_words(r)}  " + _fields_text(r["changes"], ROW_FIELDS))
-        for d in self.derived:
-            out.append(f"derived       {d['name']}: {_value(d['before'])} -> {_value(d['after'])}"
-                       f" {d.get('unit') or ''}".rstrip())
+        for kind, values in (("stated", self.stated), ("derived", self.derived)):
+            for d in values:
+                out.append(f"{kind:<13} {d['name']}: {_value(d['before'])} -> "
+                           f"{_value(d['after'])} {d.get('unit') or ''}".rstrip())
         for s in self.sheets:
             text = f"sheet {s['status']:<8}{s['sheet']}"
             if s.get("compared_with") and s["compared_with"] != s["sheet"]:
@@ -221,7 +231,9 @@ def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
     diff.parts = _parts(old, new, old_files, new_files)
     diff.elements = _elements(old, new)
     diff.rows = _rows(old, new)
-    diff.derived = _derived(old, new)
+    changed = _derived(old, new)
+    diff.stated = [d for d in changed if _is_stated(d["name"])]
+    diff.derived = [d for d in changed if not _is_stated(d["name"])]
     diff.sheets = _sheets(old, new, old_files, new_files)
     return diff
 
@@ -322,6 +334,13 @@ def _rows(old: dict, new: dict) -> list[dict]:
         if ch:
             out.append({"row": n, "role": role, "changes": ch})
     return out
+
+
+def _is_stated(name: str) -> bool:
+    """Whether the derived record ``name`` (``section.key...``) is a value its product's
+    design file states (:data:`PRODUCT_STATED_KEYS`)."""
+    section, _, key = name.partition(".")
+    return key.split(".")[0] in PRODUCT_STATED_KEYS.get(section, ())
 
 
 def _derived(old: dict, new: dict) -> list[dict]:

@@ -58,7 +58,9 @@ class DieSection(Section):
     name: str = DEFAULT_DIE_NAME
     kobj_resolution_rel: number(0.0, 1.0, lo_open=True, unit="",
                                 why="the K_obj error the read-out noise may leave anywhere in "
-                                    "the range (1 sigma)") = DEFAULT_KOBJ_RESOLUTION_REL
+                                    "the range (1 sigma; left out, the die is sized to the "
+                                    "default and verify reports it, not judged)"
+                                ) = DEFAULT_KOBJ_RESOLUTION_REL
     kobj_accuracy_rel: number(0.0, 10.0, lo_open=True, unit="",
                               why="the largest K_obj error the die may read with over its "
                                   "range: the worst root sum square of its K_obj budget "
@@ -66,7 +68,8 @@ class DieSection(Section):
     max_grasp_force_N: number(0.0, MAX_GRASP_FORCE_N, lo_open=True, unit="N",
                               why="the largest grasp force the die must survive in its jaw: "
                                   "at it no beam past its breaking force, a hard stop taking "
-                                  "the rest (not judged when left out)") = None
+                                  "the rest, each post and the cavity floor under it within "
+                                  "its strength (not judged when left out)") = None
     root_fillet_um: number(ROOT_FILLET_RANGE_UM[0], ROOT_FILLET_RANGE_UM[1], lo_open=True,
                            unit="um",
                            why="the fillet where each beam's sidewalls meet the frame, drawn "
@@ -130,6 +133,8 @@ class DieDesign:
         source: the file.
         strength: the file's Weibull pair, or None.
         attach: the file's die attach, or None (the mount's assumption).
+        stated: the ``[die]`` keys the file (with its overrides) states; a key left out
+            takes its default.
     """
 
     die: DieSection
@@ -137,6 +142,7 @@ class DieDesign:
     source: Path
     strength: WeibullPair | None = None
     attach: DieAttach | None = None
+    stated: frozenset = frozenset()
 
 
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
@@ -176,7 +182,8 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
                                      alternatives=[{"option": f'die.name = "{cleaned}"',
                                                     "words": CLEANED_CELL_NAME_WORDS}])])
     problems.raise_if_any()
-    return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach))
+    return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach),
+                     frozenset(data.get(DIE_TABLE) or {}))
 
 
 def attach_of(section: DieAttachSection | None) -> DieAttach | None:

@@ -332,6 +332,9 @@ class DiePlan:
     weibull: WeibullPair | None = None
     #: the K_obj resolution the die must reach over its range (relative, 1 sigma)
     kobj_resolution_rel: float = DEFAULT_KOBJ_RESOLUTION_REL
+    #: True when the die's file states ``kobj_resolution_rel``: verify then judges it; else
+    #: the die is sized to :data:`DEFAULT_KOBJ_RESOLUTION_REL` and verify reports it, not judged
+    kobj_resolution_stated: bool = False
     #: the film bonding the die to its carrier (the lab's ``[attach]``, else the assumption)
     attach: DieAttach = DEFAULT_DIE_ATTACH
     #: the largest grasp force the die must survive in its jaw (N), or None (not judged)

@@ -82,7 +82,8 @@ def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kw
     :data:`~tactcad.products.silicon_die.design.mems_die.DEFAULT_KOBJ_RESOLUTION_REL`) anywhere in the range at
     the rated force (the read-out noise term of the die's budget,
     :func:`tactcad.products.silicon_die.in_use.die_budget.readout_noise_term`); ``kwargs`` as ``die_plan`` takes
-    them.
+    them. The plan's ``kobj_resolution_stated`` says whether ``kobj_resolution_rel`` was
+    given (verify judges it) or is the default (reported, not judged).
 
     Raises:
         DesignError: as :func:`~tactcad.products.silicon_die.design.mems_die.die_plan`; ``--full-scale-force``
@@ -96,7 +97,8 @@ def doped_die_plan(targets, room, kobj_resolution_rel: float | None = None, **kw
     plan = die_plan_at(targets, room, targets.full_scale_force_N, kwargs)
     if not resolves(plan, target):
         raise _too_light(targets, room, plan, worst_readout_error_rel(plan), target, kwargs)
-    return dataclasses.replace(plan, kobj_resolution_rel=float(target))
+    return dataclasses.replace(plan, kobj_resolution_rel=float(target),
+                               kobj_resolution_stated=kobj_resolution_rel is not None)
 
 
 def resolves(plan, target: float) -> bool:

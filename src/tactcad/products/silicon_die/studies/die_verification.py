@@ -245,26 +245,43 @@ def post_height_row(budget, error_rel: float = 0.0) -> dict:
 
 def _grasp_row(plan, mount) -> dict:
     """``max_grasp_force_N``: the die's jaw closed to that force on the default tissue
-    (:func:`tactcad.products.silicon_die.in_use.die_grasp.grasp_at_force`); each beam's force
-    on its spring against its breaking force (its root's peak at the mean strength of etched
-    silicon), a hard stop taking the rest; fails when a beam passes it or the jaw cannot
-    reach the force. ``predicted`` is a grasp force, as the target is
-    (:func:`grasp_force_columns`; the deciding beam's force and breaking force are
-    ``element_force_N`` and ``overload_limit_N``). Undecided, not passed, where a post rests
-    on its stop (the posts' and the cavity floor's strength under it is not judged) or the
-    die's face meets the tissue (past the punch model). Its error: the breaking force's
-    K_t error (:func:`kt_error_rel`) and the beam's force on its spring, the closed form's K
-    and the tissue model's in quadrature (as the array's
-    :func:`tactcad.studies.verification.grasp_error_rel`), added; a margin inside it is
-    undecided, past it on the short side failed."""
+    (:func:`tactcad.products.silicon_die.in_use.die_grasp.grasp_at_force`), one item per load
+    path (``items``), each judged on its own margin and error, the record the worst item's
+    (:func:`tactcad.mechanics.verdicts.deciding_item`):
+
+    * the beams: each beam's force on its spring against its breaking force (its root's peak
+      at the mean strength of etched silicon), a hard stop taking the rest; error the
+      breaking force's K_t error (:func:`kt_error_rel`) and the beam's force, the closed
+      form's K and the tissue model's in quadrature (as the array's
+      :func:`tactcad.studies.verification.grasp_error_rel`), added;
+    * the posts: the most loaded post's whole force over its footprint against the posts'
+      compressive limit
+      (:data:`tactcad.products.silicon_die.mechanics.die_strength.POST_STRENGTH_MPA`);
+      error the post's force's (the K and the tissue model's in quadrature);
+    * the cavity floors (with a post on its stop): each stop's force pressing its beam's end
+      on its floor over the post's footprint, the contact's edge tension at most half its
+      mean pressure, judged on the die's Weibull pair over the ring it falls off in
+      (:func:`tactcad.products.silicon_die.mechanics.die_strength.floors_force_scale`, the
+      mean strength without a pair); error the force's and the footprint's shape
+      (:data:`~tactcad.products.silicon_die.mechanics.die_strength.FOOTPRINT_SHAPE_ERROR_REL`),
+      added.
+
+    Each margin is in force, every force taken in proportion to the grasp, so ``predicted``
+    is the grasp at which the deciding item reaches its limit (target x (1 + margin); None
+    where a beam on its stop decides, whose force the stop holds whatever the grasp,
+    :func:`tactcad.studies.verification.grasp_force_columns`); the deciding beam's force and
+    breaking force are ``element_force_N`` and ``overload_limit_N``. Where the die's face
+    meets the tissue the punch model puts the whole grasp on the posts: an upper bound on
+    every force judged, as the face takes its share. A grasp the jaw cannot reach fails."""
     from tactcad.errors import DesignError
-    from tactcad.mechanics.verdicts import verdict
+    from tactcad.mechanics.verdicts import deciding_item, verdict
     from tactcad.products.silicon_die.design.mems_die import CLOSED_FORM_K_ERROR_REL
     from tactcad.products.silicon_die.in_use.die_grasp import grasp_at_force
     from tactcad.studies.verification import TISSUE_MODEL_ERROR_REL, grasp_force_columns
 
     target = plan.max_grasp_force_N
-    error = kt_error_rel(plan) + math.hypot(CLOSED_FORM_K_ERROR_REL, TISSUE_MODEL_ERROR_REL)
+    force_error = math.hypot(CLOSED_FORM_K_ERROR_REL, TISSUE_MODEL_ERROR_REL)
+    error = kt_error_rel(plan) + force_error
     base = {"requirement": "max_grasp_force_N", "target": target, "error_estimate_rel": error,
             "model": "closed-form"}
     try:
@@ -279,33 +296,123 @@ def _grasp_row(plan, mount) -> dict:
         return {**base, "predicted": 0.0, "margin_rel": None, "verdict": "pass",
                 "binding_words": "no post meets the tissue at that force"}
     over = [t["site"] for t in result.tips if t["over_overload_limit"]]
-    stopped = [t["site"] for t in result.tips if t["on_stop"]]
     face = [t["site"] for t in result.tips if t.get("face_in_contact")]
-    stop_N = max(t["stop_force_N"] for t in result.tips)
-    margin = worst["overload_limit_N"] / worst["element_force_N"] - 1.0
-    # a stop's load and the face in the tissue lie outside what the row judges: a grasp
-    # the beams survive is then undecided, not passed
-    unjudged = bool(over == [] and (stopped or face))
-    judged = verdict(margin, error, 0.0, not over)
-    return {**base, **grasp_force_columns(target, margin, worst["on_stop"]),
+    beam_margin = worst["overload_limit_N"] / worst["element_force_N"] - 1.0
+    beams = {"item": f"beam {worst['site']}: its force on its spring against its breaking "
+                     "force", "margin_rel": beam_margin, "error_estimate_rel": error,
+             "verdict": verdict(beam_margin, error, 0.0, not over)}
+    items = [beams, *_stop_path_items(plan, result.tips, force_error)]
+    decides = deciding_item(items)
+    if decides is beams:
+        columns = grasp_force_columns(target, beam_margin, worst["on_stop"])
+    else:  # a post's or a floor's force goes with the grasp
+        m = decides["margin_rel"]
+        columns = {"predicted": None if m is None else target * (1.0 + m), "margin_rel": m}
+    return {**base, **columns, "error_estimate_rel": decides["error_estimate_rel"],
             "element_force_N": worst["element_force_N"],
             "overload_limit_N": worst["overload_limit_N"],
-            "verdict": "undecided" if unjudged and judged == "pass" else judged,
-            "binding_words": f"beam {worst['site']}: {1e3 * worst['element_force_N']:.3g} mN "
-                             f"on its spring at the {target:g} N grasp (jaw at "
-                             f"{result.angle_deg:.3g} degrees), breaking force "
-                             f"{1e3 * worst['overload_limit_N']:.3g} mN; on their stops: "
-                             f"{', '.join(map(str, stopped)) or 'none'} (the most a stop "
-                             f"takes {stop_N:.3g} N: the posts' and the cavity floor's "
-                             "strength under it is not judged)"
-                             + (f"; the die's face in the tissue beside posts "
-                                f"{', '.join(map(str, face))} (past the punch model)"
-                                if face else "")
-                             + (f"; past breaking: {', '.join(map(str, over))}" if over else "")
-                             + ("" if worst["on_stop"] else
-                                f"; predicted: the grasp at which beam {worst['site']} "
-                                f"reaches its breaking force, its force in proportion to "
-                                f"the grasp")}
+            "verdict": decides["verdict"], "items": items, "binding_item": decides["item"],
+            "binding_words": _grasp_words(plan, result, worst, decides, over, face, target)}
+
+
+def grasp_row(plan, mount, grasp_N: float) -> dict:
+    """The ``max_grasp_force_N`` record of :func:`die_verification` at the grasp ``grasp_N``
+    (N), whatever the plan states.
+
+    Args:
+        plan: the die. mount: its mount in its jaw. grasp_N: the grasp force (N, > 0).
+
+    Returns:
+        The verification record.
+    """
+    from dataclasses import replace
+
+    return _grasp_row(replace(plan, max_grasp_force_N=float(grasp_N)), mount)
+
+
+def surviving_grasp_N(plan, mount, start_N: float, tries: int = 12) -> float | None:
+    """A grasp, two significant digits rounded down, at most ``start_N`` (N), whose
+    :func:`grasp_row` passes, near the largest: from ``start_N`` down, each next grasp the
+    one the last row predicts less its error (every force goes nearly in proportion to the
+    grasp), at least one step of the second digit lower, a tenth lower where the row
+    predicts none.
+
+    Args:
+        plan, mount: the die and its mount. start_N: the first grasp tried (N).
+        tries: the most grasps tried.
+
+    Returns:
+        The grasp (N), or None where none of them passes.
+    """
+    from tactcad.vocabulary.rounding import round_down
+
+    grasp = start_N
+    for _ in range(tries):
+        if not grasp > 0:
+            return None
+        paste = round_down(grasp, 2)
+        row = grasp_row(plan, mount, paste)
+        if row["verdict"] == "pass":
+            return paste
+        step = 10.0 ** (math.floor(math.log10(paste)) - 1)  # one unit of the second digit
+        guess = (row["predicted"] / (1.0 + row["error_estimate_rel"]) if row.get("predicted")
+                 else 0.9 * paste)
+        grasp = min(guess, paste - step)
+    return None
+
+
+def _stop_path_items(plan, tips, force_error_rel: float) -> list[dict]:
+    """The grasp row's items for a stop's load path (see :func:`_grasp_row`): the most
+    loaded post, and the cavity floors under the posts on their stops (none on a stop: no
+    floor item)."""
+    from tactcad.mechanics.verdicts import judged
+    from tactcad.products.silicon_die.mechanics.die_strength import (
+        FOOTPRINT_SHAPE_ERROR_REL, POST_STRENGTH_MPA, bearing_area_um2, floors_force_scale,
+        post_stress_MPa)
+
+    post = max(tips, key=lambda t: t["tip_force_N"])
+    stress = post_stress_MPa(post["tip_force_N"], plan.post_um)
+    items = [judged({"item": f"post {post['site']}: {stress:.3g} MPa on its "
+                             f"{plan.post_um:g} um footprint against {POST_STRENGTH_MPA:g} MPa",
+                     "margin_rel": POST_STRENGTH_MPA / stress - 1.0 if stress > 0 else None,
+                     "error_estimate_rel": force_error_rel})]
+    stops = [t["stop_force_N"] for t in tips if t["on_stop"]]
+    if stops:
+        area = bearing_area_um2(plan.post_um, plan.beam_width_um)
+        scale = floors_force_scale(stops, area, plan.weibull)
+        items.append(judged({"item": f"the cavity floors under {len(stops)} stops (the most "
+                                     f"{max(stops):.3g} N on {area:g} um^2)",
+                             "margin_rel": scale - 1.0 if math.isfinite(scale) else None,
+                             "error_estimate_rel": force_error_rel + FOOTPRINT_SHAPE_ERROR_REL}))
+    return items
+
+
+def _grasp_words(plan, result, worst, decides, over, face, target) -> str:
+    """The grasp row's words: the deciding item, the beam that decides the beams, the
+    stops' load path's model and sources, the face and the beams past breaking."""
+    from tactcad.products.silicon_die.mechanics.die_strength import POST_STRENGTH_SOURCE
+
+    stopped = [t["site"] for t in result.tips if t["on_stop"]]
+    stop_N = max(t["stop_force_N"] for t in result.tips)
+    strength = (plan.weibull.whose if plan.weibull is not None
+                else "the mean strength of etched silicon")
+    return (f"deciding: {decides['item']} (error {100 * decides['error_estimate_rel']:.2g} %); "
+            f"beam {worst['site']}: {1e3 * worst['element_force_N']:.3g} mN "
+            f"on its spring at the {target:g} N grasp (jaw at {result.angle_deg:.3g} degrees), "
+            f"breaking force {1e3 * worst['overload_limit_N']:.3g} mN; on their stops: "
+            f"{', '.join(map(str, stopped)) or 'none'} (the most a stop takes {stop_N:.3g} N: "
+            f"the post's whole force over its footprint against {POST_STRENGTH_SOURCE}; the "
+            f"beam's end on the cavity floor over the footprint, the contact's edge tension "
+            f"at most half its mean pressure (Johnson, Contact Mechanics, 1985, 3.4), judged "
+            f"by {strength})"
+            + (f"; the die's face in the tissue beside posts {', '.join(map(str, face))}: "
+               "the punch model puts the whole grasp on the posts, an upper bound on their "
+               "forces" if face else "")
+            + (f"; past breaking: {', '.join(map(str, over))}" if over else "")
+            + ("" if decides["margin_rel"] is None or (decides["item"].startswith("beam")
+                                                       and worst["on_stop"]) else
+               "; predicted: the grasp at which the deciding item reaches its limit, every "
+               "force in proportion to the grasp"))
 
 
 def worst_budget_rel(plan) -> float:
@@ -359,21 +466,28 @@ def accuracy_row(plan, worst: float | None = None, error: float | None = None) -
 def _resolution_row(plan) -> dict:
     """``kobj_resolution_rel``: the largest K_obj error the bridges' noise leaves over the
     range at the rated force against the die's requirement; its error the largest change
-    with each K moved by the closed form's K error (:func:`k_moved_error_rel`)."""
-    from tactcad.mechanics.verdicts import verdict
+    with each K moved by the closed form's K error (:func:`k_moved_error_rel`). Where the
+    die's file states none (the die sized to the default), reported, not judged
+    (:func:`tactcad.mechanics.verdicts.reported_not_judged`), as an array's."""
+    from tactcad.mechanics.verdicts import reported_not_judged, verdict
     from tactcad.products.silicon_die.studies.die_doping import worst_readout_error_rel
 
     worst = worst_readout_error_rel(plan)
     error = _finite_or_none(resolution_error_rel(plan))
     margin = (plan.kobj_resolution_rel / worst - 1.0
               if math.isfinite(worst) and worst > 0 else None)
-    return {"requirement": "kobj_resolution_rel", "target": plan.kobj_resolution_rel,
-            "predicted": worst, "error_estimate_rel": error, "margin_rel": margin,
-            "model": "closed-form",
-            "verdict": verdict(margin, error, 0.0, worst <= plan.kobj_resolution_rel),
-            "binding_words": "the read-out noise term of the budget, worst over the K_obj "
-                             "range, the reference at the rated force (its error: each K "
-                             "moved by the closed form's K error)"}
+    record = {"requirement": "kobj_resolution_rel", "target": plan.kobj_resolution_rel,
+              "predicted": worst, "error_estimate_rel": error, "margin_rel": margin,
+              "model": "closed-form",
+              "verdict": verdict(margin, error, 0.0, worst <= plan.kobj_resolution_rel),
+              "binding_words": "the read-out noise term of the budget, worst over the K_obj "
+                               "range, the reference at the rated force (its error: each K "
+                               "moved by the closed form's K error)"}
+    if getattr(plan, "kobj_resolution_stated", False):
+        return record
+    return reported_not_judged({**record, "binding_words": record["binding_words"] + (
+        f"; not stated: the die is sized to {plan.kobj_resolution_rel:g}, its default, "
+        "reported, not judged")})
 
 
 def _rated_row(plan) -> dict:
