@@ -22,26 +22,51 @@ from tactcad.drawings.sheet import fmt_mm
 
 @lru_cache(maxsize=8)
 def _force_figures(plan: Plan) -> tuple[float, dict]:
-    """(rated full-scale force N, {part name: (element force limit N, limit words)}),
-    closed form. Cached per plan (its design hash covers the requirements)."""
+    """(rated full-scale force N, {part name: (element force limit N, limit words, its
+    relative error)}), closed form. Cached per plan (its design hash covers the
+    requirements)."""
     from tactcad.mechanics.limits import LIMIT_WORDS, plan_limits
     from tactcad.studies.verification import requirements_of
 
     req = requirements_of(plan)
-    per_part: dict[str, tuple[float, str]] = {}
+    per_part: dict[str, tuple[float, str, float]] = {}
     for lim in plan_limits(plan, "closed-form"):
         if lim.part_name not in per_part or lim.force_N < per_part[lim.part_name][0]:
-            per_part[lim.part_name] = (lim.force_N, LIMIT_WORDS[lim.limit])
+            per_part[lim.part_name] = (lim.force_N, LIMIT_WORDS[lim.limit],
+                                       lim.error_estimate_rel)
     return req.full_scale_force_N, per_part
+
+
+def rating_verdict_words(limit_N: float, rated_N: float, error_rel: float) -> str:
+    """The rating judged against one element's force limit by verify's rule
+    (:func:`tactcad.mechanics.verdicts.verdict`): ``met``, ``NOT met``, or, where the
+    margin lies inside the closed form's error, ``undecided`` with the margin, the error
+    and the command that decides it.
+
+    Args:
+        limit_N: the element force limit (N). rated_N: the rated full-scale force (N).
+        error_rel: the limit's relative error estimate at the closed form.
+
+    Returns:
+        The words the note prints after "the design's, ".
+    """
+    from tactcad.mechanics.verdicts import verdict
+
+    margin = limit_N / rated_N - 1.0
+    said = verdict(margin, error_rel, 0.0, limit_N >= rated_N)
+    if said == "undecided":
+        return (f"undecided at the closed form: margin {margin:+.1%} inside its "
+                f"{error_rel:.1%} error; tactcad verify decides")
+    return "met" if said == "pass" else "NOT met"
 
 
 def full_scale_note(plan: Plan, part_name: str, yield_MPa: float, grade: str) -> str:
     """The element's full-scale force note: the design's rated full-scale
-    force, this element's force limit (the largest force it carries) and the
-    limit that binds it."""
+    force, judged against this element's force limit (the largest force it carries) as
+    verify judges it (:func:`rating_verdict_words`), and the limit that binds it."""
     rated, per_part = _force_figures(plan)
-    limit, words = per_part[part_name]
-    verdict = "met" if limit >= rated else "NOT met"
+    limit, words, error = per_part[part_name]
+    verdict = rating_verdict_words(limit, rated, error)
     return (f"Rated full-scale force {rated:.3g} N (the design's, {verdict}): element force "
             f"limit {limit:.3g} N, bound by {words} (closed form; yield "
             f"{yield_MPa:g} MPa, {grade}). Do not load the tip beyond {rated:.3g} N.")
