@@ -120,7 +120,7 @@ def rating_text(judged: dict) -> str:
             f"{RATING_WORDS[judged['verdict']]}; the lowest element force limit is "
             f"{judged['element_force_limit_N']:.3g} N, bound by {judged['binding_limit']} "
             f"(element {judged['binding_element']}), margin {100 * judged['margin_rel']:+.1f} % "
-            f"(error {100 * judged['error_estimate_rel']:.2f} %, {judged['model']})")
+            f"(error {100 * judged['element_force_limit_error_rel']:.2f} %, {judged['model']})")
     if judged["verdict"] != "undecided":
         return line
     return f"{line}: the margin lies inside the error; {climb_hint(judged['model'])}"

@@ -346,7 +346,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
 
     Returns:
         ``{"full_scale_force_N", "reason", "element_force_limit_N", "binding_limit",
-        "binding_element", "margin_rel", "error_estimate_rel", "verdict", "met",
+        "binding_element", "margin_rel", "element_force_limit_error_rel", "verdict", "met",
         "model"}`` (N; relative): ``verdict`` one of ``pass``, ``fail``, ``undecided``, the
         judgement; ``met`` the nominal comparison alone (limit >= rating, its error aside),
         as verify's ``pass`` and the manifest's ``full_scale_force.met``.
@@ -370,7 +370,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
     return {"full_scale_force_N": rated,
             "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
             "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
-            "margin_rel": margin, "error_estimate_rel": b.error_estimate_rel,
+            "margin_rel": margin, "element_force_limit_error_rel": b.error_estimate_rel,
             "verdict": said, "met": b.force_N >= rated, "model": model}
 
 
