@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 from string import Template
-from typing import Any, Mapping
+from typing import Any, Iterable, Mapping
 
 from tactcad.version import VERSION
 from tactcad.atomic import in_target, remove_tree, staging_dir, warn_left_behind
@@ -247,22 +247,25 @@ def _check_target(folder: Path, names: list[str], force: bool, option: str = "DI
 
 
 def check_project_target(folder: Path, design_name: str, force: bool,
-                         option: str = "--out") -> None:
+                         option: str = "--out", companions: Iterable[str] = ()) -> None:
     """Refuse, before a design is searched for it, a project folder that
     :func:`write_project` would refuse: one holding the design file, its README, .gitignore,
-    CI workflow or bought-parts list (without ``force``), or another design file. The
-    rigs and scenes, named by the design to come, are checked again when it is written.
+    CI workflow, bought-parts list or one of ``companions`` (without ``force``), or another
+    design file. Whatever else the design to come names is checked again when it is written.
 
     Args:
         folder: the project folder asked for.
         design_name: the design file's name in it (``NAME.toml``).
         force: the project's files may be replaced.
         option: the argument named by a refusal.
+        companions: the rigs and scenes files the design to come will write (names
+            relative to ``folder``), so that a refusal lists every file ``force`` replaces.
 
     Raises:
         DesignError: as :func:`write_project`'s, naming ``option``.
     """
-    _check_target(folder, [design_name, *EXTRA_FILES.values(), PURCHASED_PARTS], force, option)
+    _check_target(folder, [design_name, *EXTRA_FILES.values(), PURCHASED_PARTS, *companions],
+                  force, option)
 
 
 def _named_files(plan: Plan) -> dict[str, str]:

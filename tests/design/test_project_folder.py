@@ -641,3 +641,20 @@ def test_design_into_a_folder_whose_rigs_do_not_fit_warns_with_a_command_that_wo
         shutil.copy(EXAMPLES / "ti_array_2x3" / name, fitting / name)
     assert rigs_beside(read_toml(_bare_design(fitting), "design file"), fitting / "b.toml",
                        "b.toml")["fits"] is True
+
+
+@pytest.mark.parametrize("where", [["--verify", "none"], ["--jaw", "10"]], ids=["stacked", "jaw"])
+def test_designing_into_a_folder_lists_the_scenes_force_would_replace(tmp_path, where):
+    """A lab's edited scenes.toml went under --force although the refusal without it had
+    not named it: the refusal, made before the search, names every file --force replaces."""
+
+    folder = tmp_path / "lab_array"
+    folder.mkdir()
+    (folder / "scenes.toml").write_text("# MY EDIT\n", encoding="utf-8")
+    (folder / "README.md").write_text("# our array\n", encoding="utf-8")
+    done = run_cli("design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                   "--full-scale-force", "0.3", *where, "--out", folder)
+    assert done.returncode == 2, done.stderr
+    assert "--out" in done.stderr and "README.md, scenes.toml already" in done.stderr
+    assert (folder / "scenes.toml").read_text(encoding="utf-8") == "# MY EDIT\n"
+    assert sorted(p.name for p in folder.iterdir()) == ["README.md", "scenes.toml"]

@@ -384,6 +384,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from tactcad.atomic import write_bytes_atomic
+    from tactcad.design.project import COMPANIONS
     from tactcad.project_folder import check_project_target
     from tactcad.studies.inverse_design import Targets
     from tactcad.studies.layout_search import searched_design
@@ -403,7 +404,7 @@ def _run(args: argparse.Namespace) -> int:
         folder / f"{folder.name.replace('-', '_') or 'inverse_design'}.toml"
     check_design_name(args.out, folder, path)
     if folder is not None:  # an existing project is refused now, not after the search
-        check_project_target(folder, path.name, args.force)
+        check_project_target(folder, path.name, args.force, companions=COMPANIONS.values())
     stacked = STACKED_COLUMNS_RANGE  # the design file's own range (array.columns)
     if args.columns is not None:
         check_columns(args.columns, stacked, "a stacked array", STACKED_COLUMNS_WHY)
@@ -1290,6 +1291,7 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
     the one that counts (written with its scenes), or every binding limit."""
     from tactcad.assembly.inventory import array_envelope_mm
     from tactcad.atomic import write_bytes_atomic
+    from tactcad.design.project import COMPANIONS
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.project_folder import (check_project_target, scenes_without_rigs_text,
                                         write_project)
@@ -1302,7 +1304,9 @@ def run_jaw(args: argparse.Namespace, targets) -> int:
         folder / f"{folder.name.replace('-', '_') or 'grasper_insert'}.toml"
     check_design_name(args.out, folder, path)
     if folder is not None:  # an existing project is refused now, not after the search
-        check_project_target(folder, path.name, args.force)
+        # an array in the jaw writes its scenes (a die does not: refused the safer way)
+        check_project_target(folder, path.name, args.force,
+                             companions=[COMPANIONS["scenes"]] if chosen else [])
     name = path.stem.replace("-", "_") or "grasper_insert"
     from tactcad.design.array_plan import EXAMPLES, read_toml
 
