@@ -85,6 +85,50 @@ SCRIPT = textwrap.dedent('''
                 Job("w3", "k3", slept("w3"), worker=True),
                 Job("w4", "k4", slept("w4"), worker=True),
                 Job("y", "ky", slept("y"), after=("w0",))]
+    if sys.argv[2] == "kernel":  # jobs that read a solid: the kernel is inherited
+        import resource
+
+        def cpu_at_start(name):
+            def make(run):
+                use = resource.getrusage(resource.RUSAGE_SELF)
+                return [{"path": name, "part": name, "kind": "test", "pid": os.getpid(),
+                         "cpu_s": use.ru_utime + use.ru_stime,
+                         "build123d": "build123d" in sys.modules}]
+            return make
+        run = Run(load_project(), staging, print)
+        nut = run.array[0]["nut_M2"]
+        jobs = [Job("w0", "k0", cpu_at_start("w0"), (nut,), worker=True),
+                Job("w1", "k1", cpu_at_start("w1"), (nut,), worker=True)]
+        records, ran = run_jobs(run, jobs, Store(None))
+        print(json.dumps({"main": main_pid, "records": records}))
+        sys.exit(0)
+    if sys.argv[2] == "prepared":  # a job's prepare, kept in a store with a folder
+        import time
+        from tactcad.export.jobs import keeping_run_results
+        from tactcad.store import kept_result
+
+        def prepare(run):
+            with keeping_run_results(run):
+                kept_result("test prepared", os.getpid, "facts")
+
+        def reads_prepared(run):
+            with keeping_run_results(run):
+                made_in = kept_result("test prepared", os.getpid, "facts")
+            return [{"path": "y", "part": "y", "kind": "test", "pid": os.getpid(),
+                     "prepared_in": made_in}]
+
+        def slept(name):
+            def make(run):
+                time.sleep(0.5)
+                return [{"path": name, "part": name, "kind": "test", "pid": os.getpid()}]
+            return make
+        jobs = [Job("w0", "k0", slept("w0"), worker=True),
+                Job("w1", "k1", slept("w1"), worker=True),
+                Job("y", "ky", reads_prepared, after=("w0", "w1"), prepare=prepare)]
+        store = Store(staging.parent / "store")
+        records, ran = run_jobs(Run(load_project(), staging, print, store), jobs, store)
+        print(json.dumps({"main": main_pid, "records": records}))
+        sys.exit(0)
     records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
     print(json.dumps({"main": main_pid, "ran": ran, "kernel": "OCP" in sys.modules,
                       "records": records,
@@ -136,6 +180,28 @@ def test_this_process_takes_back_the_workers_last_jobs_not_begun_while_it_waits(
     assert out["ran"] == 6
     assert pids["w4"] == pids["w3"] == pids["y"] == out["main"]  # taken back, last first
     assert out["files"] == {n: n for n in ("w0", "w1", "w2", "w3", "w4", "y")}
+
+
+@pytest.mark.slow
+def test_a_worker_forked_for_jobs_that_read_solids_inherits_the_kernel(tmp_path):
+    """The kernel's modules are imported before the fork, not again in the worker (1.5-2
+    CPU s there before): its first job finds them, having spent next to no CPU."""
+    out = run_script(tmp_path, "kernel")
+    first = out["records"][0]
+    assert first["pid"] != out["main"]
+    assert first["build123d"]
+    assert first["cpu_s"] < 0.5, first
+
+
+@pytest.mark.slow
+def test_a_jobs_prepare_runs_in_the_worker_and_is_read_back_here(tmp_path):
+    """With a store that has a folder, the review page's kind of ``prepare`` (reading no
+    file) runs in the forked worker first; the job, in this process, reads its kept
+    result back instead of working it out again."""
+    out = run_script(tmp_path, "prepared")
+    rec = {r["path"]: r for r in out["records"]}
+    assert rec["y"]["pid"] == out["main"]
+    assert rec["y"]["prepared_in"] != out["main"]  # kept by the worker, read back here
 
 
 @pytest.mark.slow
