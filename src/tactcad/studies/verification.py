@@ -177,6 +177,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.ladder import is_meshed
     from tactcad.mechanics.element_strength import at_the_grid, closed_form_stress
+    from tactcad.mechanics.limits import limit_k_error
 
     if stress is None:
         if is_meshed(model):
@@ -201,7 +202,8 @@ def element_figures(plan: Plan, model: str = "closed-form",
             progress(f"{model}: {name}")
         opts = {"progress": progress} if progress and is_meshed(model) else {}
         r = estimate(model, g, plan.material, **opts)
-        k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
+        # the K error the force limits carry: strength's rating reads the same function
+        k[name], k_err[name] = r.stiffness_N_per_mm, limit_k_error(model, g, plan.material, r)
         if name in keep_strength:  # K at the level; the force limits the level below made
             st[name], kept_from[name] = below.stresses[name], below.level_of(name)
             strength_err[name] = below.limit_k_errors()[name]
