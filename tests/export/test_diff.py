@@ -176,3 +176,49 @@ def test_two_dies_differ_in_their_beams_and_derived_values_not_only_in_bytes(tmp
                        "die.root_peak_stress_MPa_at_rated_force.reference":
                            (27e3 * 0.008, 27e3 * 0.006, "MPa")}
     assert "derived       die.cavity_depths_um.reference: 4 -> 3 um" in d.lines()
+
+
+def test_a_thinner_web_shows_its_binding_fatigue_limit_and_the_ratings_flipped_verdict(
+        tmp_path):
+    """The Ti 2 x 3's web 0.165 -> 0.14 mm: the gauge-fatigue limit that binds falls below
+    the 0.1 N rating; the diff named K and the yield-limited force but neither the binding
+    fatigue limits nor the rating's margin and verdict (pass -> fail)."""
+    from tactcad.export.manifest import requirements_section, strength_section
+    from tactcad.export.manifest_diff import REQUIREMENT_FIELDS
+    from tactcad.mechanics.limits import plan_limits
+
+    from pathlib import Path
+
+    example = (Path(__file__).resolve().parents[2] / "hardware" / "ti_array_2x3"
+               / "ti_array_2x3.toml")
+
+    def manifest(folder, web_mm):
+        plan = tactcad.load(example, set={"element.web_thickness_mm": web_mm}).plan
+        folder.mkdir()
+        man = {"files": [], "strength": strength_section(plan),
+               "requirements": requirements_section(plan)}
+        (folder / "manifest.json").write_text(json.dumps(man), encoding="utf-8")
+        limits = {(lim.element, lim.limit): lim.force_N for lim in plan_limits(plan)}
+        for rec in man["strength"]:  # the manifest's fatigue limits are the limits' own
+            assert rec["gauge_fatigue_force_N"] == pytest.approx(
+                limits[rec["element"], "gauge_fatigue"], rel=1e-9)
+            assert rec["fatigue_force_N"] == pytest.approx(limits[rec["element"], "fatigue"],
+                                                           rel=1e-9)
+        return folder
+
+    d = compare(manifest(tmp_path / "old", 0.165), manifest(tmp_path / "new", 0.14))
+    element = {e["element"]: e["changes"] for e in d.elements}[1]
+    assert {"gauge_fatigue_force_N", "fatigue_force_N"} <= set(element)
+    assert element["gauge_fatigue_force_N"]["after"] < 0.1 < \
+        element["gauge_fatigue_force_N"]["before"]
+    rating = {r["requirement"]: r["changes"] for r in d.requirements}["full_scale_force_N"]
+    assert rating["verdict"] == {"before": "pass", "after": "fail"}
+    assert rating["margin_rel"]["before"] > 0 > rating["margin_rel"]["after"]
+    assert rating["predicted"]["after"] == pytest.approx(
+        element["gauge_fatigue_force_N"]["after"])
+    assert set(rating) <= set(REQUIREMENT_FIELDS) and "target" not in rating
+    line = next(x for x in d.lines() if x.startswith("requirement   full_scale_force_N"))
+    before, after = (100 * rating["margin_rel"][k] for k in ("before", "after"))
+    assert f"margin_rel {before:+.3g} % -> {after:+.3g} %" in line
+    assert "verdict pass -> fail" in line
+    assert d.as_json()["requirements"] == d.requirements and d.changed

@@ -132,3 +132,33 @@ def test_the_spacer_has_its_own_process_and_its_shop_file(plan):
     with pytest.raises(DesignErrors) as err:
         plan_from_dict(data)
     assert "comb.spacer_process" in str(err.value) and "etching" in str(err.value)
+
+
+def test_each_rows_drawing_carries_the_rated_full_scale_force_as_a_stacked_element_does(plan):
+    """The stacked element's drawing judges the rating against its element force limit;
+    a comb's row drawings carried no such note. Each row's judges it against the row's
+    lowest element force limit, by verify's rule (:func:`rating_verdict_words`)."""
+    from types import SimpleNamespace
+
+    from tactcad.drawings.design_notes import rating_verdict_words
+    from tactcad.drawings.part_sets import PEN
+    from tactcad.mechanics.limits import plan_limits
+    from tactcad.partlib.array.comb_sheet import notes
+    from tactcad.studies.verification import requirements_of
+
+    rated = requirements_of(plan).full_scale_force_N
+    limits = plan_limits(plan, "closed-form")
+    for sheet in plan.comb.sheets:
+        spec = SimpleNamespace(geometry=sheet, process="wire EDM", material="Ti")
+        said = [n for n in notes(SimpleNamespace(spec=spec, plan=plan, tip_height=None), PEN)
+                if n.startswith("Rated full-scale force")]
+        assert len(said) == 1, sheet.row
+        numbers = {s.number for s in plan.slots if s.row == sheet.row}
+        lowest = min((lim for lim in limits if lim.element in numbers),
+                     key=lambda lim: (lim.force_N, lim.element))
+        words = rating_verdict_words(lowest.force_N, rated, lowest.error_estimate_rel)
+        assert said[0].startswith(f"Rated full-scale force {rated:.3g} N on every tip "
+                                  f"(the design's, {words}): element force limit "
+                                  f"{lowest.force_N:.3g} N, the row's lowest (element "
+                                  f"{lowest.element})")
+        assert f"Do not load a tip beyond {rated:.3g} N." in said[0]

@@ -2178,9 +2178,10 @@ def print_report(r: dict) -> None:
               f"   {u['stiffness_from']}")
     c = r.get("tissue_coupling")
     if c:
-        # mirrored units tie to round-off: the first in the array's order is named
-        worst = max((u for u in c["units"]),
-                    key=lambda u: round(abs(u["worst_eq3_rel"] or float("inf")), 9))
+        # mirrored units tie to round-off: verify's rule names the first in the array's order
+        from tactcad.in_use.tissue_coupling import unit_label, worst_unit
+
+        worst = worst_unit(c["units"], lambda u: u["worst_eq3_rel"])
         if c["mode"] == "off":
             head = "eq. 2 alone (--tissue-coupling off)"
         elif "eq. 2's centring" not in (c["assumption"] or ""):
@@ -2188,9 +2189,6 @@ def print_report(r: dict) -> None:
         else:
             head = ("every unit's coupled R spans the range; K_r, K_m at eq. 2's centring (x1, "
                     "see [assumptions])")
-
-        from tactcad.in_use.tissue_coupling import unit_label
-
         eq3 = worst["worst_eq3_rel"]
         print(f"tissue coupling: {head} (K_obj seen x{c['kobj_seen_factor']:.3g}); coupling "
               f"{min(u['coupling'] for u in c['units']):.3f}-{max(u['coupling'] for u in c['units']):.3f}; "

@@ -13,8 +13,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "diff", help="what changed between two exports (or two design files)",
         description="Compare two exports from their manifests: parts added, removed and "
-                    "changed, elements whose stiffness K or strength changed (a silicon die's "
-                    "rows, named with their role), derived dimensions, a die's values its "
+                    "changed, elements whose stiffness K or strength changed (their fatigue "
+                    "limits included; a silicon die's rows, named with their role), the "
+                    "closed-form verification's requirements whose prediction, margin or "
+                    "verdict changed (the rated full-scale force's among them), derived "
+                    "dimensions, a die's values its "
                     "file states (listed as stated), "
                     "and drawing sheets; with --out, an overlay (old red, new blue) and a "
                     "side-by-side PNG of every changed sheet (unchanged sheets are not rendered). "
@@ -26,8 +29,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", metavar="DIR", type=output_folder, default=None,
                    help="write the changed sheets' overlay and side-by-side PNG here")
     add_cache_args(p)
-    add_output_args(p, "print one JSON object: parts, elements, rows (a die's), derived, "
-                       "stated (a die's), sheets, files")
+    add_output_args(p, "print one JSON object: parts, elements, rows (a die's), requirements, "
+                       "derived, stated (a die's), sheets, files")
     p.set_defaults(func=run)
 
 

@@ -167,14 +167,13 @@ TISSUE_READINGS = (("eq3", "eq. 3 alone", {"pass": "may be read so", "fail": "mu
 def tissue_text(record: dict) -> str:
     """The tissue coupling's K_obj bias, worst unit (reference/measuring), by eq. 3 and by
     the coupled inversion, each with what its verdict means for the reading."""
-    from tactcad.in_use.tissue_coupling import unit_label
+    from tactcad.in_use.tissue_coupling import unit_label, worst_unit
 
     if not record["units"]:
         return "tissue coupling: no sensing unit"
     parts = []
     for key, words, meaning in TISSUE_READINGS:
-        worst = min(record[key]["items"], key=lambda it: (it["bias_rel"] is not None,
-                                                            -abs(it["bias_rel"] or 0)))
+        worst = worst_unit(record[key]["items"], lambda it: it["bias_rel"])
         bias = "no answer" if worst["bias_rel"] is None else f"{100 * worst['bias_rel']:+.3g} %"
         verdict = record[key]["verdict"]
         parts.append(f"{words} worst {bias} (unit {unit_label(worst['unit'])}): "

@@ -72,6 +72,35 @@ def full_scale_note(plan: Plan, part_name: str, yield_MPa: float, grade: str) ->
             f"{yield_MPa:g} MPa, {grade}). Do not load the tip beyond {rated:.3g} N.")
 
 
+def row_full_scale_note(plan: Plan, row: int, yield_MPa: float, grade: str) -> str:
+    """A sheet of a whole row's elements (a comb's row): the stacked element's full-scale
+    force note (:func:`full_scale_note`) for the row, the rating judged as verify judges it
+    (:func:`rating_verdict_words`) against the lowest element force limit of the row's
+    elements, with the element that has it and the limit that binds it.
+
+    Args:
+        plan: the design. row: the row (0-based). yield_MPa: the material's yield
+            strength (MPa). grade: the material's name on the drawing.
+
+    Returns:
+        The note (N).
+
+    Raises:
+        DesignError: no element of ``plan`` is in ``row`` (naming the rows there are).
+    """
+    rated, per_part = _force_figures(plan)
+    slots = [s for s in plan.slots if s.row == row]
+    if not slots:
+        raise DesignError("row", row + 1, f"1 ... {plan.rows}", "a row of the design")
+    limit, words, error, number = min(((*per_part[s.geometry.part_name], s.number)
+                                       for s in slots), key=lambda t: (t[0], t[3]))
+    verdict = rating_verdict_words(limit, rated, error)
+    return (f"Rated full-scale force {rated:.3g} N on every tip (the design's, {verdict}): "
+            f"element force limit {limit:.3g} N, the row's lowest (element {number}), bound "
+            f"by {words} (closed form; yield {yield_MPa:g} MPa, {grade}). Do not load a tip "
+            f"beyond {rated:.3g} N.")
+
+
 @lru_cache(maxsize=8)
 def _first_frequencies(plan: Plan) -> dict[str, float]:
     """{part name: first in-plane natural frequency (Hz)}, closed form, cached per plan."""

@@ -29,7 +29,7 @@ from tactcad.drawings.drawing import (FIRST_TIER, TIER, Drawing, Hole2D, holes_s
 from tactcad.drawings.sheet import fmt_mm
 from tactcad.drawings.views import CAMERAS, cameras_for, orientation
 from tactcad.drawings.design_notes import (element_web_note, full_scale_note, gauge_note,
-                                           resonance_note)
+                                           resonance_note, row_full_scale_note)
 from tactcad.partlib.base import DrawingRecord
 from tactcad.partlib.registry import drawing_record
 
@@ -179,6 +179,7 @@ PEN = SimpleNamespace(
     tip_height_tolerance=lambda d: tip_height_tolerance_mm(d),
     readout=lambda plan: readout_of(plan.raw, plan.strength.gauge),
     web_note=element_web_note, gauge_note=gauge_note, full_scale_note=full_scale_note,
+    row_full_scale_note=row_full_scale_note,
     resonance_note=resonance_note,
     profile_dxf_name=profile_dxf_name, sheet_dxf_name=sheet_dxf_name,
     sheet_dxf_of=lambda plan, spec: sheet_dxf_of(plan, spec))

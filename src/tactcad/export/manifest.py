@@ -252,12 +252,15 @@ def assumptions_section(plan: Plan) -> list[dict]:
 
 
 def _strength_record(r: dict) -> dict:
-    """An element's arm, stiffness K, yield-limited force, and its safety
+    """An element's arm, stiffness K, yield-limited force, its fatigue limits (the material's
+    at the notch, ``fatigue_force_N``, None without a fatigue strength, and the gauge's,
+    ``gauge_fatigue_force_N``; N, as ``strength --json`` names them), and its safety
     factor, gauge strain and tip deflection at the design's rated full-scale
     force (``full_scale_force_N``, the same for every element) for the
     manifest (closed form)."""
     keys = ("element", "part_name", "arm_length_mm", "model", "stiffness_N_per_mm",
             "stress_MPa_per_N", "full_scale_force_N", "yield_limited_force_N",
+            "fatigue_force_N", "gauge_fatigue_force_N",
             "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
             "tip_deflection_mm_at_full_scale", "warnings")
     return {k: r[k] for k in keys}

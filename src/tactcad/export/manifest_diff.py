@@ -7,6 +7,9 @@
 * elements whose part, arm, stiffness K or strength changed, before and after; a silicon
   die's rows (its manifest's "rows": row 1 reference, row 2 measuring) likewise, each named
   by its number and role and with its own rated force;
+* the closed-form verification (the manifest's ``requirements.closed_form_matrix``): each
+  requirement whose target, prediction, error, margin, verdict or binding limit changed,
+  the rated full-scale force's binding element force limit, margin and verdict among them;
 * derived dimensions whose value changed; a product's values its design file states (a
   silicon die's ``[die]`` keys, :data:`PRODUCT_STATED_KEYS`) listed apart, as stated;
 * drawing sheets added, removed and changed; a new sheet that replaces the
@@ -39,11 +42,18 @@ REL_TOL = 1e-9
 ELEMENT_FIELDS = {
     "part_name": "", "arm_length_mm": "mm", "stiffness_N_per_mm": "N/mm",
     "stress_MPa_per_N": "MPa/N", "full_scale_force_N": "N", "yield_limited_force_N": "N",
+    # the fatigue limits, which bind a thin web before yield (strength --json's names)
+    "fatigue_force_N": "N", "gauge_fatigue_force_N": "N",
     "yield_safety_factor_at_full_scale": "", "gauge_strain_at_full_scale": "",
     "tip_deflection_mm_at_full_scale": "mm",
     # a silicon die's beams in a manifest written before its rows were named "rows"
     "stress_MPa_at_full_scale": "MPa", "strength_over_stress_at_rating": "",
 }
+#: The fields of a closed-form verification record compared (the manifest's
+#: ``requirements.closed_form_matrix``, verify's names): the rated full-scale force's row
+#: carries the binding element force limit (``predicted``), its margin and its verdict.
+REQUIREMENT_FIELDS = ("target", "predicted", "error_estimate_rel", "margin_rel", "verdict",
+                      "binding_words", "binding_element")
 #: A silicon die's row fields compared (its manifest's "rows", one a row's beam), with their
 #: units: the force is the row's own rated force, not the die's full-scale force.
 ROW_FIELDS = {
@@ -141,6 +151,7 @@ class Diff:
     parts: dict = field(default_factory=dict)  # added, removed, changed
     elements: list = field(default_factory=list)
     rows: list = field(default_factory=list)  # a silicon die's rows
+    requirements: list = field(default_factory=list)  # the closed-form verification's records
     derived: list = field(default_factory=list)
     stated: list = field(default_factory=list)  # a product's values its design file states
     sheets: list = field(default_factory=list)
@@ -149,13 +160,15 @@ class Diff:
     @property
     def changed(self) -> bool:
         """True when anything differs, the bytes of any file included."""
-        return bool(any(self.parts.values()) or self.elements or self.rows or self.derived
+        return bool(any(self.parts.values()) or self.elements or self.rows or self.requirements
+                    or self.derived
                     or self.stated or self.sheets
                     or any(self.files.values()))
 
     def as_json(self) -> dict:
         return {"old": self.old, "new": self.new, "changed": self.changed, "parts": self.parts,
-                "elements": self.elements, "rows": self.rows, "derived": self.derived,
+                "elements": self.elements, "rows": self.rows,
+                "requirements": self.requirements, "derived": self.derived,
                 "stated": self.stated, "sheets": self.sheets,
                 "files": self.files}
 
@@ -172,6 +185,8 @@ class Diff:
             out.append(f"element {e['element']:<4} " + _fields_text(e["changes"]))
         for r in self.rows:
             out.append(f"{row_words(r)}  " + _fields_text(r["changes"], ROW_FIELDS))
+        for r in self.requirements:
+            out.append(f"requirement   {r['requirement']}: " + _requirement_text(r["changes"]))
         for kind, values in (("stated", self.stated), ("derived", self.derived)):
             for d in values:
                 out.append(f"{kind:<13} {d['name']}: {_value(d['before'])} -> "
@@ -214,6 +229,42 @@ def _fields_text(changes: Mapping[str, Mapping], units: Mapping[str, str] = ELEM
     return ", ".join(parts)
 
 
+def _requirement_text(changes: Mapping[str, Mapping]) -> str:
+    """A requirement's changes, a margin in per cent (``margin_rel +1.4 % -> -9.1 %``)."""
+    def shown(key: str, v: Any) -> str:
+        if key == "margin_rel" and isinstance(v, (int, float)) and not isinstance(v, bool):
+            return f"{100 * v:+.3g} %"
+        return _value(v)
+
+    return ", ".join(f"{k} {shown(k, ch['before'])} -> {shown(k, ch['after'])}"
+                     for k, ch in changes.items())
+
+
+def _matrix(man: dict) -> dict[str, dict]:
+    """The manifest's closed-form verification records by requirement (none: empty)."""
+    req = man.get("requirements")
+    records = req.get("closed_form_matrix") if isinstance(req, Mapping) else None
+    return {r["requirement"]: r for r in records or []
+            if isinstance(r, Mapping) and isinstance(r.get("requirement"), str)}
+
+
+def _requirements(old: dict, new: dict) -> list[dict]:
+    """The closed-form verification records whose :data:`REQUIREMENT_FIELDS` differ:
+    ``{"requirement", "changes"}``, in the newer manifest's order (a record only one has:
+    ``present`` before / after)."""
+    a, b = _matrix(old), _matrix(new)
+    out = []
+    for name in list(b) + [n for n in a if n not in b]:
+        if name not in a or name not in b:
+            out.append({"requirement": name,
+                        "changes": {"present": {"before": name in a, "after": name in b}}})
+            continue
+        ch = _changes(a[name], b[name], REQUIREMENT_FIELDS)
+        if ch:
+            out.append({"requirement": name, "changes": ch})
+    return out
+
+
 def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
     """Compare the exports in two folders from their manifests (no geometry is built).
 
@@ -231,6 +282,7 @@ def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
     diff.parts = _parts(old, new, old_files, new_files)
     diff.elements = _elements(old, new)
     diff.rows = _rows(old, new)
+    diff.requirements = _requirements(old, new)
     changed = _derived(old, new)
     diff.stated = [d for d in changed if _is_stated(d["name"])]
     diff.derived = [d for d in changed if not _is_stated(d["name"])]

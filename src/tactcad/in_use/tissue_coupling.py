@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -693,6 +693,35 @@ def unit_label(unit: Sequence[int]) -> str:
     """A (measuring, reference) unit as the house names a sensing unit everywhere a user
     reads one (grasp, budget, verify): ``"reference/measuring"``."""
     return f"{unit[1]}/{unit[0]}"
+
+
+#: Digits a unit's |bias| is rounded to before the worst unit is chosen: mirrored units tie
+#: to round-off, and a tie goes to the first unit in the array's order.
+WORST_TIE_DIGITS = 9
+
+
+def worst_unit(units: Sequence[Any], bias_of: Callable[[Any], float | None]) -> Any:
+    """The unit whose K_obj bias is worst, the one rule ``design``'s and ``verify``'s reports
+    name a unit by: one with no answer (``bias_of`` None, or not finite) first, else the
+    largest |bias| rounded to :data:`WORST_TIE_DIGITS` digits; a tie goes to the first unit
+    in ``units``' order (the array's).
+
+    Args:
+        units: the units' records, in the array's order. bias_of: a record's bias (relative,
+            signed) or None.
+
+    Returns:
+        The worst record.
+
+    Raises:
+        ValueError: ``units`` is empty.
+    """
+    def rank(unit: Any) -> float:
+        bias = bias_of(unit)
+        return math.inf if bias is None or not math.isfinite(bias) else \
+            round(abs(bias), WORST_TIE_DIGITS)
+
+    return max(units, key=rank)  # max keeps the first of equal ranks
 
 
 def design_units(plan, stiffness: Mapping[int, float]) -> list[tuple[int, int]]:

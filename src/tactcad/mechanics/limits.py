@@ -110,15 +110,39 @@ def element_limits(number: int, g: ElementGeometry, plan: Plan, es, k_error_rel:
     return out
 
 
+def limit_k_error(model: str, g: ElementGeometry, material, made=None) -> float:
+    """The K error estimate (relative) every strain- and travel-based force limit of ``g``
+    at ``model`` carries: the level's own K error (its stiffness estimate's
+    ``error_estimate_rel``). The one figure ``verify``'s ``full_scale_force_N`` row and
+    ``strength``'s ``element_force_limit_error_rel`` judge the rated full-scale force by
+    (a stress-based limit carries the stress's own error instead).
+
+    Args:
+        model: a ladder level. g: the element (mm). material: its material (MPa).
+        made: the level's estimate of ``g`` already made (None: made here; a FEM level's
+            is kept in the result store).
+
+    Returns:
+        The relative error (>= 0).
+
+    Raises:
+        UnknownModelError: ``model`` is not a ladder level.
+    """
+    from tactcad.mechanics.ladder import estimate
+
+    return (made if made is not None else estimate(model, g, material)).error_estimate_rel
+
+
 def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=None,
                 grid_level: str | None = None) -> list[ForceLimit]:
     """Every limit of every element of ``plan`` at ``model`` (distinct geometries once).
 
     Args:
         stresses, k_errors: per part name, :class:`ElementStress` and K's
-            error estimate already computed (else computed here: closed form
-            and beam only; the FEM levels' stresses come from
-            :mod:`tactcad.studies.strength_studies`).
+            error estimate already computed (else computed here: the stresses at the
+            closed form and beam only, the FEM levels' come from
+            :mod:`tactcad.studies.strength_studies`; K's error by :func:`limit_k_error`
+            at every level).
         grid_level: the level the grid strain is read at (:func:`~tactcad.mechanics.
             element_strength.at_the_grid`); None: each stress's own. A verification level
             whose limits no open requirement reads passes "closed-form"
@@ -128,7 +152,6 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
         DesignError: the material has no yield strength.
         ValueError: an FEM model without its ``stresses``.
     """
-    from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.element_strength import (at_the_grid, closed_form_stress,
                                                     require_yield)
 
@@ -154,8 +177,7 @@ def plan_limits(plan: Plan, model: str = "closed-form", stresses=None, k_errors=
             stresses[g.part_name] = at_the_grid(stresses[g.part_name], g, plan, grid_level)
             graded[g.part_name] = g
         if g.part_name not in k_errors:
-            k_errors[g.part_name] = estimate(model, g, plan.material).error_estimate_rel \
-                if not is_meshed(model) else stresses[g.part_name].stress_error_rel
+            k_errors[g.part_name] = limit_k_error(model, g, plan.material)
         # the plane-strain bound of a plane-stress surface stress and strain
         # (a wide web at mid-width): nu^2 below fem3d
         bound = 0.0 if model == "fem3d" else plan.material.poisson_ratio ** 2

@@ -352,7 +352,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
         as verify's ``pass`` and the manifest's ``full_scale_force.met``.
     """
     from tactcad.mechanics.element_strength import ElementStress
-    from tactcad.mechanics.limits import LIMIT_WORDS, binding, plan_limits
+    from tactcad.mechanics.limits import LIMIT_WORDS, binding, limit_k_error, plan_limits
     from tactcad.mechanics.verdicts import verdict
     from tactcad.studies.verification import requirements_of
 
@@ -362,7 +362,9 @@ def full_scale_judgement(plan, model: str, records) -> dict:
                                                r.gauge_strain_at_full_scale
                                                / r.full_scale_force_N))
                 for r in records}
-    errors = {r.part_name: r.stress_error_rel for r in records}
+    # the K error verify's row carries (limit_k_error), not the stress's: one quantity
+    errors = {part: limit_k_error(model, g, plan.material)
+              for part, g in plan.distinct_elements.items()}
     b = binding(plan_limits(plan, model, stresses, errors))
     rated = req.full_scale_force_N
     margin = b.force_N / rated - 1.0

@@ -177,6 +177,7 @@ def element_figures(plan: Plan, model: str = "closed-form",
     from tactcad.mechanics.ladder import estimate
     from tactcad.mechanics.ladder import is_meshed
     from tactcad.mechanics.element_strength import at_the_grid, closed_form_stress
+    from tactcad.mechanics.limits import limit_k_error
 
     if stress is None:
         if is_meshed(model):
@@ -201,7 +202,8 @@ def element_figures(plan: Plan, model: str = "closed-form",
             progress(f"{model}: {name}")
         opts = {"progress": progress} if progress and is_meshed(model) else {}
         r = estimate(model, g, plan.material, **opts)
-        k[name], k_err[name] = r.stiffness_N_per_mm, r.error_estimate_rel
+        # the K error the force limits carry: strength's rating reads the same function
+        k[name], k_err[name] = r.stiffness_N_per_mm, limit_k_error(model, g, plan.material, r)
         if name in keep_strength:  # K at the level; the force limits the level below made
             st[name], kept_from[name] = below.stresses[name], below.level_of(name)
             strength_err[name] = below.limit_k_errors()[name]
@@ -311,7 +313,8 @@ def tighter_web_tolerance(tolerance_mm: float, spread_rel: float,
                           floor_mm: float = WEB_TOLERANCE_STEP_MM) -> float:
     """The web tolerance that brings a K spread to ``limit_rel``, K's change taken as
     proportional to the tolerance, rounded down to :data:`WEB_TOLERANCE_STEP_MM` and no
-    tighter than ``floor_mm`` (wire EDM's process limit on the web).
+    tighter than ``floor_mm`` (what the element's cut process holds on its sheet,
+    :func:`held_web_tolerance`).
 
     Args:
         tolerance_mm: the web tolerance now (mm, > 0). spread_rel: the K spread it gives
@@ -325,11 +328,166 @@ def tighter_web_tolerance(tolerance_mm: float, spread_rel: float,
     return min(tolerance_mm, max(floor_mm, math.floor(need / step + 1e-9) * step))
 
 
+@dataclass(frozen=True)
+class HeldTolerance:
+    """The tightest web tolerance a cut process holds on an element's sheet.
+
+    Attributes:
+        tolerance_mm: +/- on the web (mm). process: the cut process's name.
+        sheet_mm: the sheet it is cut from (mm). rule: the process's rule for the figure.
+    """
+
+    tolerance_mm: float
+    process: str
+    sheet_mm: float
+    rule: str
+
+    @property
+    def words(self) -> str:
+        return f"what {self.process} holds on a {self.sheet_mm:g} mm sheet ({self.rule})"
+
+
+def _held_by(process: str, g: ElementGeometry, plan: Plan) -> HeldTolerance:
+    from tactcad.vocabulary.process import cut_process
+
+    lim = cut_process(process).limits(g.sheet_thickness_mm, plan.edm,
+                                      plan.material.grade or plan.material.name)
+    return HeldTolerance(lim.tolerance_mm.value_mm, process, g.sheet_thickness_mm,
+                         lim.tolerance_mm.rule)
+
+
+def held_web_tolerance(plan: Plan) -> HeldTolerance:
+    """The tightest web tolerance every element's own cut process holds on its sheet: the
+    figure the design file's ``element.web_tolerance_mm`` is checked against (the loosest
+    over the elements, so that one value serves all of them).
+
+    Args:
+        plan: the design.
+
+    Returns:
+        The :class:`HeldTolerance` (mm).
+    """
+    return max((_held_by(g.process, g, plan) for g in plan.distinct_elements.values()),
+               key=lambda h: h.tolerance_mm)
+
+
+def finer_process(plan: Plan, part: str) -> HeldTolerance | None:
+    """A cut process other than the element's own that holds its web tighter on its sheet
+    and takes that sheet for a flexure (the finest such), or None.
+
+    Args:
+        plan: the design. part: the element's part name.
+
+    Returns:
+        What that process holds (mm), or None.
+    """
+    from tactcad.vocabulary.process import CUT_PROCESSES
+
+    g = plan.distinct_elements[part]
+    own = _held_by(g.process, g, plan).tolerance_mm
+    found = []
+    for name, proc in CUT_PROCESSES.items():
+        lo, hi, _ = proc.flexure_sheet()
+        if name == g.process or not lo - 1e-12 <= g.sheet_thickness_mm <= hi + 1e-12:
+            continue
+        held = _held_by(name, g, plan)
+        if held.tolerance_mm < own - 1e-12:
+            found.append(held)
+    return min(found, key=lambda h: h.tolerance_mm, default=None)
+
+
+#: How far past its design web the search of a web whose K spread meets the band goes (x).
+WEB_SEARCH_FACTOR = 10.0
+
+
+def web_for_band(g: ElementGeometry, material: Material, tolerance_mm: float,
+                 limit_rel: float = K_SPREAD_NOTE_REL) -> float | None:
+    """The thinnest web, in steps of :data:`WEB_TOLERANCE_STEP_MM` above the element's own,
+    whose K moves at most ``limit_rel`` over +/- ``tolerance_mm`` (corrected closed form,
+    the rest of the element as drawn), or None within :data:`WEB_SEARCH_FACTOR` x its web.
+
+    Args:
+        g: the element (mm). material: its material (MPa). tolerance_mm: +/- on the web
+            (mm, > 0). limit_rel: the spread to reach (dimensionless, > 0).
+
+    Returns:
+        The web (mm), or None.
+    """
+    import warnings
+
+    from tactcad.in_use.kobj_budget import web_tolerance_k_rel
+
+    step = WEB_TOLERANCE_STEP_MM
+    first = math.floor(g.web_thickness_mm / step + 1e-9) + 1
+    last = math.ceil(WEB_SEARCH_FACTOR * g.web_thickness_mm / step)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a what-if's range warnings are not the design's
+        for n in range(first, last + 1):
+            web = round(n * step, 6)
+            at = _replaced(g, web_thickness_mm=web, web_tolerance_mm=tolerance_mm)
+            if web_tolerance_k_rel(at, material) <= limit_rel:
+                return web
+    return None
+
+
+def out_of_band_words(plan: Plan, part: str, held: HeldTolerance) -> str:
+    """What would bring a K spread the process's best web tolerance leaves past
+    :data:`K_SPREAD_NOTE_REL` within it: a thicker web, another cut process.
+
+    Args:
+        plan: the design. part: the element with the largest spread. held: the best
+            tolerance its process holds (:func:`held_web_tolerance`).
+
+    Returns:
+        Words for the note.
+    """
+    g = plan.distinct_elements[part]
+    band = f"+/-{100 * K_SPREAD_NOTE_REL:g} %"
+    web = web_for_band(g, plan.material, held.tolerance_mm)
+    thicker = (f"a thicker web ({part} reaches {band} at +/-{held.tolerance_mm:g} mm with a "
+               f"web of {web:g} mm, not {g.web_thickness_mm:g} mm; its arm re-sized to keep K)"
+               if web is not None else "a thicker web")
+    other = finer_process(plan, part)
+    if other is None:
+        return f"{thicker}; no cut process tactcad knows holds the web tighter on this sheet"
+    at, _ = web_spread(plan, other.tolerance_mm)
+    return (f"{thicker}, or another cut process ({other.words}: K +/-{100 * at:.3g} %; "
+            f"--set element.process={other.process} "
+            f"--set element.web_tolerance_mm={other.tolerance_mm:g})")
+
+
+def process_web_tolerance(plan: Plan, tolerance_mm: float, spread_rel: float,
+                          held: HeldTolerance) -> tuple[float, float]:
+    """The web tolerance a K spread note offers and the spread it gives: proportional
+    (:func:`tighter_web_tolerance`), then a step tighter at a time while the spread it
+    gives is still past :data:`K_SPREAD_NOTE_REL` and the process holds it.
+
+    Args:
+        plan: the design. tolerance_mm: the web tolerance now (mm). spread_rel: its K
+            spread. held: what the process holds (:func:`held_web_tolerance`).
+
+    Returns:
+        (tolerance (mm), the K spread at it (dimensionless)); the tolerance now and its
+        spread when the process holds none tighter.
+    """
+    tighter = tighter_web_tolerance(tolerance_mm, spread_rel, floor_mm=held.tolerance_mm)
+    if tighter >= tolerance_mm - 1e-12:
+        return tolerance_mm, spread_rel
+    at, _ = web_spread(plan, tighter)
+    while at > K_SPREAD_NOTE_REL and tighter - WEB_TOLERANCE_STEP_MM >= held.tolerance_mm - 1e-12:
+        tighter = round(tighter - WEB_TOLERANCE_STEP_MM, 6)
+        at, _ = web_spread(plan, tighter)
+    return tighter, at
+
+
 def k_spread_note(plan: Plan, requirements: "Requirements") -> str | None:
     """What ``verify`` and ``design`` say of the K spread over the web tolerance when the
     design file states no ``k_tolerance_rel`` and the spread exceeds
-    :data:`K_SPREAD_NOTE_REL`: how far K moves, and the two ways out (calibrate every
-    element, or a tighter web tolerance with the figure it gives and the line to paste).
+    :data:`K_SPREAD_NOTE_REL`: how far K moves, and the ways out (calibrate every element,
+    or a tighter web tolerance no tighter than the element's process holds on its sheet
+    (:func:`held_web_tolerance`), with the figure it gives and the line to paste; where
+    even that leaves K past the band, says so and names what would reach it:
+    :func:`out_of_band_words`).
 
     Args:
         plan: the design. requirements: its :func:`requirements_of`.
@@ -342,18 +500,21 @@ def k_spread_note(plan: Plan, requirements: "Requirements") -> str | None:
     spread, part = web_spread(plan)
     if spread <= K_SPREAD_NOTE_REL:
         return None
-    from tactcad.studies.tolerance_budget import PROCESS_LIMITS
-
     tol = max(g.web_tolerance_mm for g in plan.distinct_elements.values())
+    held = held_web_tolerance(plan)
     text = (f"K moves up to +/-{100 * spread:.3g} % ({part}, closed form) with the "
             f"+/-{tol:g} mm web tolerance, more than +/-{100 * K_SPREAD_NOTE_REL:g} % (a "
             f"unit's K_r/K_m band), and the design states no requirements.k_tolerance_rel: "
             f"calibrate every element (eq. 4-6)")
-    tighter = tighter_web_tolerance(tol, spread, floor_mm=PROCESS_LIMITS["web_thickness_mm"])
+    tighter, at = process_web_tolerance(plan, tol, spread, held)
     if tighter < tol:
-        at, _ = web_spread(plan, tighter)
         text += (f", or tighten the web tolerance to +/-{tighter:g} mm (K +/-{100 * at:.3g} %"
                  f"; --set element.web_tolerance_mm={tighter:g})")
+    if at > K_SPREAD_NOTE_REL:
+        band = f"+/-{100 * K_SPREAD_NOTE_REL:g} %"
+        best = (f"even +/-{tighter:g} mm, {held.words}, leaves K past {band}" if tighter < tol
+                else f"the +/-{tol:g} mm is already {held.words}, and K stays past {band}")
+        text += f"; {best}: {out_of_band_words(plan, part, held)}"
     return text + "; state the band your use needs as requirements.k_tolerance_rel to judge it"
 
 

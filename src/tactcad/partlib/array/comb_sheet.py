@@ -266,7 +266,8 @@ def element_lines(d, pen) -> list[str]:
 
 def notes(d, pen) -> list[str]:
     """The comb sheet's notes: the process, each run of like elements with its tolerances,
-    the stops and the holes' fits."""
+    the stops, the holes' fits and the rated full-scale force judged against the row's
+    lowest element force limit (as a stacked element's drawing judges its own)."""
     sheet = d.spec.geometry
     gaps = sheet.stop_gaps_mm or sheet.cut_gaps_mm
     stops = ", ".join(pen.fmt_mm(gap) + (f" (cut {pen.fmt_mm(cut)}, shim {pen.fmt_mm(shim)})"
@@ -278,7 +279,9 @@ def notes(d, pen) -> list[str]:
             f"Stop gaps under the arms' ends, element by element: {stops}; a gap narrower "
             f"than the wire's slot is cut at the slot and closed to the stop gap by a shim "
             f"bonded on the ledge under the tip.",
-            "Dowel holes reamed H7; screw holes ISO 273 medium."]
+            "Dowel holes reamed H7; screw holes ISO 273 medium.",
+            pen.row_full_scale_note(d.plan, sheet.row, d.plan.material.yield_strength_MPa,
+                                    d.plan.material.grade or d.plan.material.name)]
 
 
 def plan_values(plan, spec, pen) -> tuple:
