@@ -353,6 +353,53 @@ def run_cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     return subprocess.CompletedProcess(["tactcad", *argv], code, out.getvalue(), err.getvalue())
 
 
+def designed_once(tmp_path_factory, name: str, argv: tuple[str, ...]) -> tuple[Path, str]:
+    """(working folder, what it printed): ``tactcad ARGV`` (a ``design``) run in the folder
+    ``shared/<name>`` once per test run (:func:`_once_per_run`), for the tests that read
+    what one whole design search wrote and said; read only, copy it before running a
+    command in it.
+
+    Raises:
+        AssertionError: the command did not exit 0.
+    """
+    def make(folder: Path) -> None:
+        folder.mkdir()
+        r = run_cli(*argv, cwd=folder)
+        assert r.returncode == 0, r.stdout + r.stderr
+        (folder / "said.txt").write_text(r.stdout, encoding="utf-8")
+    folder = _once_per_run(tmp_path_factory, name, make)
+    return folder, (folder / "said.txt").read_text(encoding="utf-8")
+
+
+#: ``tactcad design`` of a 17-4PH array whose 0.105 mm web in a 5 mm sheet moves K by
+#: +/-51 % over its web tolerance and puts the closed form's out-of-plane error above 100 %.
+THIN_WEB_DESIGN = ("design", "--kr-over-km", "6", "--kobj-range", "0.5", "4",
+                   "--full-scale-force", "0.114", "--material", "17-4PH-H900", "--columns", "4",
+                   "--out", "ph4")
+
+
+@pytest.fixture
+def thin_web_designed(tmp_path_factory) -> tuple[Path, str]:
+    """(project folder, what ``design`` printed) of :data:`THIN_WEB_DESIGN`, searched once
+    a test run (:func:`designed_once`)."""
+    folder, said = designed_once(tmp_path_factory, "thin-web-design", THIN_WEB_DESIGN)
+    return folder / "ph4", said
+
+
+#: ``tactcad design --json`` of a stiff 7075-T6 stacked array into ``next.toml``, with the
+#: tissue coupling (its default) named.
+STACKED_7075_DESIGN = ("design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                       "--full-scale-force", "0.3", "--material", "7075-T6", "--verify", "none",
+                       "--out", "next.toml", "--json", "--tissue-coupling", "on")
+
+
+@pytest.fixture
+def stacked_7075_designed(tmp_path_factory) -> tuple[Path, str]:
+    """(working folder holding ``next.toml``, the JSON ``design`` printed) of
+    :data:`STACKED_7075_DESIGN`, searched once a test run (:func:`designed_once`)."""
+    return designed_once(tmp_path_factory, "stacked-7075-design", STACKED_7075_DESIGN)
+
+
 #: The tests that drive a browser (Chromium, headless) or the FreeCAD GUI: under
 #: pytest-xdist they share one process (``--dist loadgroup``), so two never run at
 #: once; the other tests of their files go to any worker.

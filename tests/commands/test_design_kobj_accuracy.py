@@ -6,6 +6,8 @@ import json
 import re
 from pathlib import Path
 
+import pytest
+
 from conftest import run_cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -14,6 +16,9 @@ TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
 STACKED = ("design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force", "0.3")
 
 
+# a whole design search through the command line; the report's words on the miss are
+# test_the_reports_words_on_a_failed_accuracy_carry_numbers's (fast)
+@pytest.mark.slow
 def test_a_missed_accuracy_is_refused_with_the_accuracy_asked_and_reached(tmp_path):
     r = run_cli(*STACKED, "--kobj-accuracy", "0.001", "--out", "a.toml", "--json",
                 cwd=tmp_path)

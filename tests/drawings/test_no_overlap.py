@@ -236,11 +236,13 @@ def terminal_board_overlaps(columns: int, pitch_mm: float) -> list[str]:
     return [o.text() for o in sheet_overlaps(layout_of_svg(svg, "terminal_board.svg"))]
 
 
-@pytest.mark.parametrize("columns, pitch_mm", [(12, 2.54), (12, 1.7), (11, 2.54), (2, 2.54)],
-                         ids=["12_columns", "12_columns_finest_pitch", "11_columns", "2_columns"])
+@pytest.mark.parametrize("columns, pitch_mm", [(12, 1.7), (11, 2.54), (2, 2.54)],
+                         ids=["12_columns_finest_pitch", "11_columns", "2_columns"])
 def test_the_terminal_board_labels_its_holes_clear_at_every_stacked_column_count(columns, pitch_mm):
     """A 2 x 12 array's board (48 holes at 2:1, a pitch narrower than a hole label) once
-    put five labels under other labels' leaders and failed its own drawings check."""
+    put five labels under other labels' leaders and failed its own drawings check. The
+    most columns at the finest pitch (the 2.54 mm pitch's labels sit wider apart), an odd
+    count and the fewest."""
     assert terminal_board_overlaps(columns, pitch_mm) == []
 
 

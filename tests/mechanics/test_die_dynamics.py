@@ -214,6 +214,26 @@ def test_the_frame_gives_under_the_root_and_the_shorter_beam_loses_more(plan):
     assert 0.0 < lost["measuring"] < lost["reference"] < 0.3, lost
 
 
+def test_a_mirror_symmetric_crystal_and_a_node_plane_at_y0_make_a_half_mesh(plan):
+    """The beam, its post, its frame block, the load and silicon's tensor turned into the
+    beam's frame are each their own mirror image across y = 0: a crystal turned off its
+    mirror is not, and a mesh without a node plane there (one cell across the beam) has no
+    half. The solves that show the halves give the whole's K and f1 are fem3d's
+    (:func:`test_the_mirrored_halves_give_the_whole_meshs_k_and_f1`, slow)."""
+    from tactcad.products.silicon_die.mechanics import die_fem3d
+    from tactcad.vocabulary.crystal import SILICON
+
+    def turned(along, across):
+        return die_fem3d.stiffness_tensor(SILICON.in_frame(along, across))
+
+    assert die_fem3d.mirror_symmetric(turned((1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)))
+    assert not die_fem3d.mirror_symmetric(turned((1.0, 0.5, 0.0), (-0.5, 1.0, 0.0)))
+    beam = plan.beams[0]
+    assert die_fem3d.half_mesh(die_fem3d._mesh(plan, beam, (6, 2, 1), True)[0]) is not None
+    assert die_fem3d.half_mesh(die_fem3d._mesh(plan, beam, (6, 1, 1), True)[0]) is None
+
+
+@pytest.mark.slow  # fem3d solves, whole and halved (the half mesh's test above stays fast)
 def test_the_mirrored_halves_give_the_whole_meshs_k_and_f1(plan):
     """The beam, its post, its frame block, the load and silicon's tensor turned into the
     beam's frame are each their own mirror image across y = 0, so on a mesh with a node

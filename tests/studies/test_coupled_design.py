@@ -3,10 +3,12 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 
 import numpy as np
 import pytest
 
+from conftest import STACKED_7075_DESIGN
 from tactcad.cli import main
 from tactcad.design.array_plan import load_design
 from tactcad.errors import DesignError
@@ -61,13 +63,20 @@ def test_a_layout_whose_coupled_ratio_cannot_span_the_range_is_refused_naming_th
 
 
 @pytest.mark.parametrize("mode, says", [("on", "tissue-coupling on"), ("off", "tissue-coupling off")])
-def test_cli_states_the_tissue_model_and_reports_the_bias(tmp_path, monkeypatch, capsys, mode, says):
+def test_cli_states_the_tissue_model_and_reports_the_bias(tmp_path, monkeypatch, capsys, mode, says,
+                                                          request):
     monkeypatch.chdir(tmp_path)
     argv = ["design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force", "0.3",
             "--material", "7075-T6", "--verify", "none", "--out", "next.toml", "--json",
             "--tissue-coupling", mode]
-    assert main(argv) == 0
-    doc = json.loads(capsys.readouterr().out)
+    if mode == "on":  # conftest's STACKED_7075_DESIGN: these options, searched once a run
+        folder, said = request.getfixturevalue("stacked_7075_designed")
+        assert argv == list(STACKED_7075_DESIGN)
+        shutil.copytree(folder, tmp_path, dirs_exist_ok=True)
+    else:
+        assert main(argv) == 0
+        said = capsys.readouterr().out
+    doc = json.loads(said)
     assert doc["tissue_coupling"]["mode"] == mode
     assert all(0 < u["coupling"] < 1 for u in doc["tissue_coupling"]["units"])
     assert says in (tmp_path / "next.toml").read_text()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shutil
 import math
 import re
 from pathlib import Path
@@ -134,12 +135,16 @@ def test_unit_resolution_follows_eq2_and_scales_with_force():
     assert half["K_obj_resolution_N_per_mm"] == pytest.approx(r["K_obj_resolution_N_per_mm"] / 2)
 
 
-def test_cli_writes_a_loadable_design_and_json(tmp_path, monkeypatch, capsys):
+def test_cli_writes_a_loadable_design_and_json(tmp_path, monkeypatch, capsys,
+                                              stacked_7075_designed):
+    # the search is conftest's STACKED_7075_DESIGN (these options, the tissue coupling named
+    # at its default), run once a test run
     monkeypatch.chdir(tmp_path)
     argv = ["design", "--kr-over-km", "3", "--kobj-range", "5", "20", "--full-scale-force", "0.3",
             "--material", "7075-T6", "--verify", "none", "--out", "next.toml", "--json"]
-    assert main(argv) == 0
-    doc = json.loads(capsys.readouterr().out)
+    folder, said = stacked_7075_designed
+    shutil.copytree(folder, tmp_path, dirs_exist_ok=True)
+    doc = json.loads(said)
     assert {"targets", "elements", "units", "web_thickness_mm", "references",
             "K_r_over_K_m"} <= set(doc)
     assert {"K_obj_N_per_mm", "R", "dR_dKobj_per_N_per_mm",
@@ -612,6 +617,9 @@ def test_a_reason_the_base_carried_from_the_papers_design_keeps_its_words_not_th
     assert "macro_array" not in neutral_assumptions(base, "macro_array")["a.y"]
 
 
+# two whole design searches through the command line; the force found rounded down to
+# the grid is tests/studies/test_layout_search.py's (fast)
+@pytest.mark.slow
 def test_the_largest_feasible_force_printed_designs_when_pasted(tmp_path, monkeypatch, capsys):
     """The largest force a design prints is rounded down, so pasting it designs (0.12058 N
     was printed 0.1206 N, which the search then refused)."""
@@ -681,7 +689,7 @@ def test_the_requirements_a_design_derives_say_so_and_verify_does_not_call_them_
 
 
 def test_a_design_writes_no_k_band_of_its_own_and_verify_reports_its_spread_unjudged(
-        tmp_path, monkeypatch, capsys):
+        thin_web_designed):
     """A K band derived from the design's own K spread could never fail: design writes
     none, and verify reports the spread as a figure (INFO, no verdict of its own) with a
     note when it exceeds K_SPREAD_NOTE_REL: how far K moves, and the ways out to paste."""
@@ -689,13 +697,10 @@ def test_a_design_writes_no_k_band_of_its_own_and_verify_reports_its_spread_unju
                                               requirements_of, verification_matrix)
 
     # the lab's repro: a 0.105 +/-0.02 mm web in a 5 mm sheet, K +/-51 % over its tolerance
-    monkeypatch.chdir(tmp_path)
-    assert main(["design", "--kr-over-km", "6", "--kobj-range", "0.5", "4",
-                 "--full-scale-force", "0.114", "--material", "17-4PH-H900", "--columns", "4",
-                 "--out", "ph4", "--quiet"]) == 0
-    said = capsys.readouterr().out
+    # (conftest's THIN_WEB_DESIGN, searched once a run)
+    folder, said = thin_web_designed
     assert "note: K moves up to +/-" in said and "calibrate every element" in said
-    plan = load_design(tmp_path / "ph4" / "ph4.toml")
+    plan = load_design(folder / "ph4.toml")
     assert "k_tolerance_rel" not in plan.raw["requirements"]
     assert "requirements.k_tolerance_rel" not in plan.raw["assumptions"]
     assert plan.element(1).geometry.web_thickness_mm == pytest.approx(0.105)

@@ -192,6 +192,23 @@ def test_a_grid_value_the_rules_refuse_is_named_by_its_option_each_once(tmp_path
     assert "errors" not in error or len(error["errors"]) == 1
 
 
+def test_a_refused_grid_value_starts_no_cluster(tmp_path, capsys, monkeypatch):
+    """`sweep grid --arms 1 50` started a local Dask cluster (its processes, seconds of a
+    refusal) before the rules judged the grid: the values are judged first."""
+    from tactcad.studies import sweeps
+
+    started = []
+
+    def client(*args, **kwargs):
+        started.append(args)
+        raise AssertionError("a cluster started for a refused grid")
+
+    monkeypatch.setattr(sweeps, "dask_client", client)
+    code = main(["sweep", "grid", "--out", str(tmp_path / "a"), "--arms", "1", "50", "--json"])
+    assert code == 2 and started == []
+    assert json.loads(capsys.readouterr().out)["error"]["errors"][0]["field"] == "--arms"
+
+
 def test_a_bad_grid_value_is_refused_without_calling_the_grids_own_options_unknown(capsys):
     code = main(["sweep", "grid", "--webs", "-1", "--out", "x", "--json"])
     error = json.loads(capsys.readouterr().out)["error"]

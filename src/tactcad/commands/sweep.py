@@ -115,15 +115,17 @@ def _measured(plan) -> dict:
 
 def run_grid_cmd(args: argparse.Namespace) -> int:
     from tactcad.studies.sweeps import (dask_client, dask_mapper, default_grid_axes, design_grid,
-                                        plot_design_chart, rows_as_json, write_grid_csv)
+                                        evaluated_grid, grid_points, plot_design_chart,
+                                        rows_as_json, write_grid_csv)
 
     check_out_folder(args.out)
     plan = plan_from_args(args)
     own_webs, own_arms = default_grid_axes(plan)
     webs, arms = args.webs or own_webs, args.arms or own_arms
+    # the grid's values judged before a cluster starts (seconds): a refusal is said at once
+    points = grid_points(plan, webs, arms, args.model, args.radii)
     with dask_client(args.scheduler, _workers(args)) as client:
-        rows = design_grid(plan, webs, arms, args.model, args.radii,
-                           mapper=dask_mapper(client, progress=_bar(args)))
+        rows = evaluated_grid(points, mapper=dask_mapper(client, progress=_bar(args)))
         if args.model != "closed-form":  # the chart's lines: closed form, finer in arm
             lo, hi = min(arms), max(arms)
             fine = [lo + (hi - lo) * k / 16 for k in range(17)]

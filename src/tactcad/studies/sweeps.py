@@ -452,8 +452,20 @@ def design_grid(plan: Plan, webs_mm: Sequence[float], arms_mm: Sequence[float],
                 model: str = "closed-form", notch_radii_mm: Sequence[float] | None = None,
                 mapper: Callable = map) -> list[GridRow]:
     """Evaluate the design grid (see :func:`grid_points`), rows in grid order."""
-    return list(mapper(evaluate_point, grid_points(plan, webs_mm, arms_mm, model,
-                                                   notch_radii_mm)))
+    return evaluated_grid(grid_points(plan, webs_mm, arms_mm, model, notch_radii_mm), mapper)
+
+
+def evaluated_grid(points: Sequence[GridPoint], mapper: Callable = map) -> list[GridRow]:
+    """The rows of grid points already judged by the design rules (:func:`grid_points`).
+
+    Args:
+        points: the grid's points, in grid order.
+        mapper: ``map`` or a cluster's (:func:`dask_mapper`).
+
+    Returns:
+        One row per point (K in N/mm, strain per N, wall time in s), in grid order.
+    """
+    return list(mapper(evaluate_point, points))
 
 
 def write_grid_csv(path: str | Path, rows: Sequence[GridRow]) -> Path:
