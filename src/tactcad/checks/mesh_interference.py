@@ -3,7 +3,9 @@
 Fast path: every part is tessellated once (chordal tolerance
 :data:`MESH_TOLERANCE_MM`), turned into a manifold3d ``Manifold`` (double
 precision) and placed per instance; every pair with overlapping bounding
-boxes is intersected on the meshes. A tessellation is not conservative (the
+boxes is intersected on the meshes, once per export (two parts in a relative
+pose an earlier scene held, the array's stack in every rig scene, are read
+back). A tessellation is not conservative (the
 facets of a convex face lie inside it, those of a hole stand into the hole),
 so a pair goes to OpenCascade's exact boolean (:mod:`.interference`) when
 
@@ -47,6 +49,9 @@ class InterferenceReport:
     mesh_seconds: float = 0.0
     confirm_seconds: float = 0.0
     overlaps: dict[frozenset[str], float] = field(default_factory=dict)
+    #: of ``pairs_tested``, those whose mesh verdict an earlier call with the same memo
+    #: made (the same two parts in the same relative pose: the array's stack in every scene)
+    pairs_reused: int = 0
 
 
 def part_manifold(solid, tolerance_mm: float = MESH_TOLERANCE_MM, mesh=None):
@@ -79,6 +84,23 @@ def _pose_key(a: str, b: str, part_of: dict, locations: dict) -> tuple:
     return (part_of[a], part_of[b], tuple(np.round(rel, 9).ravel()))
 
 
+def mesh_verdict(ma, mb, contact: bool) -> tuple[float, bool]:
+    """The fast path's verdict on two placed meshes: their overlap volume (mm3) and whether
+    the pair goes to OpenCascade's exact check (an overlap above
+    :data:`~tactcad.checks.interference.OVERLAP_TOL_MM3`, a declared contact, or meshes
+    closer than :data:`NEAR_MM`).
+
+    Args:
+        ma, mb: the two parts' manifold3d ``Manifold`` placed in one frame (mm).
+        contact: whether the scene declares the pair a contact.
+
+    Returns:
+        (overlap volume in mm3, whether it needs the exact check).
+    """
+    vol = (ma ^ mb).volume()
+    return vol, vol > OVERLAP_TOL_MM3 or contact or ma.min_gap(mb, NEAR_MM) < NEAR_MM
+
+
 def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
                             part_of: dict[str, str], part_solids: dict, locations: dict,
                             confirm: bool = True, part_meshes: dict | None = None,
@@ -96,9 +118,9 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
         confirm: run the OpenCascade confirmation (off: mesh verdicts only,
             for timing the fast path).
         part_meshes: part name -> :func:`tessellate` result, if already made.
-        memo: the exact answers of earlier calls, by the two parts, their
-            relative pose and whether they are a contact (the same part names
-            must mean the same solids: one export's scenes share it).
+        memo: the mesh verdicts and exact answers of earlier calls, by the two
+            parts, their relative pose and whether they are a contact (the same
+            part names must mean the same solids: one export's scenes share it).
     """
     t0 = time.perf_counter()
     part_meshes = part_meshes or {}
@@ -110,7 +132,9 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
         items.append((p, m, bounding_box(p.shape)))
     out: list[CheckResult] = []
     to_confirm: list[tuple[Placed, Placed, float | None]] = []
-    tested = 0
+    tested = reused = 0
+    # same two parts in the same relative pose: same answer (across scenes too)
+    memo = {} if memo is None else memo
     for (a, ma, ba), (b, mb, bb) in itertools.combinations(items, 2):
         pair = frozenset({a.name, b.name})
         if not ba.overlaps(bb, max(NEAR_MM, CONTACT_TOL_MM)):
@@ -122,13 +146,16 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
         if ma is None or mb is None:
             to_confirm.append((a, b, None))
             continue
-        vol = (ma ^ mb).volume()
-        if vol > OVERLAP_TOL_MM3 or pair in contacts or ma.min_gap(mb, NEAR_MM) < NEAR_MM:
+        key = ("mesh",) + _pose_key(a.name, b.name, part_of, locations) + (pair in contacts,)
+        if key in memo:
+            reused += 1
+        else:
+            memo[key] = mesh_verdict(ma, mb, pair in contacts)
+        vol, exact = memo[key]
+        if exact:
             to_confirm.append((a, b, vol))
     t1 = time.perf_counter()
     overlaps: dict[frozenset[str], float] = {}
-    # same two parts in the same relative pose: same answer (across scenes too)
-    memo = {} if memo is None else memo
     if confirm:
         for a, b, mvol in to_confirm:
             subject = f"{a.name} / {b.name}"
@@ -164,4 +191,4 @@ def check_mesh_interference(placed: list[Placed], contacts: set[frozenset[str]],
         "interference", f"{len(placed)} parts", ok,
         f"{tested} pairs on meshes ({t1 - t0:.2f} s), {len(to_confirm)} confirmed exactly "
         f"({t2 - t1:.2f} s), overlap limit {OVERLAP_TOL_MM3:g} mm3"))
-    return InterferenceReport(out, tested, len(to_confirm), t1 - t0, t2 - t1, overlaps)
+    return InterferenceReport(out, tested, len(to_confirm), t1 - t0, t2 - t1, overlaps, reused)
