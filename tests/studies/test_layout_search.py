@@ -284,6 +284,19 @@ def test_a_refusals_force_is_the_largest_judged_force_on_the_grid(carried_N):
     assert force_frontier(lambda f: None, 0.5805) is None
 
 
+def test_a_refusals_force_grows_above_a_start_that_designs():
+    """The start is the best layout's own largest force by whole designs (0.281 N on an
+    8 mm sheet, CuBe 2 x 3), but the layout the search reaches (6 mm) designs up to 0.2849 N:
+    the refusal offered 0.281 N while the design at it reported 0.2849 N."""
+    from tactcad.studies.layout_search import force_frontier
+
+    carried = 0.2849
+    force, layout = force_frontier(lambda f: "layout" if f <= carried else None, 0.281)
+    assert layout == "layout" and force == 0.284  # the largest grid force carried
+    for start in (0.1, 0.2, 0.284, 0.3, 0.5):  # one figure, wherever it starts
+        assert force_frontier(lambda f: "layout" if f <= carried else None, start)[0] == 0.284
+
+
 def test_a_refusals_force_is_found_far_below_the_best_layouts_own_force():
     """On a soft K_obj range the search may design only far below the best layout's own
     largest force (0.004826 N against 0.0254 N): the steps down do not stop at a few per

@@ -2209,9 +2209,9 @@ def print_report(r: dict) -> None:
 
 def largest_force_line(r: dict) -> str:
     """The report's largest feasible full-scale force: across the layouts the search tried,
-    the figure its refusal names (``across_layouts_force_N``), and this design's layout's own
-    where another layout carries more; rounded down, so the force printed first designs
-    when pasted.
+    the figure its refusal names (``across_layouts_force_N``, a force the search designs at,
+    so it designs when pasted), and this design's layout's own estimate (rounded down) where
+    another layout carries more.
 
     Args:
         r: :func:`design_report`'s dict.
@@ -2228,8 +2228,8 @@ def largest_force_line(r: dict) -> str:
     if across is None or not layout:  # one layout's design (a footprint): its own figure
         where = f" for this layout ({layout})" if layout else ""
         return f"{head}{own:.4g} N{where}, bound by {bound}"
-    if r["across_layouts_layout"] == layout:
-        return (f"{head}{own:.4g} N across the layouts searched, at this design's ({layout}), "
+    if r["across_layouts_layout"] == layout:  # the refusal's figure, not the layout's estimate
+        return (f"{head}{across:g} N across the layouts searched, at this design's ({layout}), "
                 f"bound by {bound}")
     return (f"{head}{across:g} N across the layouts searched, at {r['across_layouts_layout']} "
             f"(to paste: --full-scale-force {across:g}); this design's layout ({layout}) "

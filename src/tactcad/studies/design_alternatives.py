@@ -15,7 +15,9 @@ the limits that bind. This module adds what a designer needs next:
 
 Each candidate is a whole inverse design on the changed tables (0.1 s each on
 the closed form), so what it reports is what ``tactcad design`` with that
-change would do. Units: mm, N, N/mm.
+change would do on that layout; given a judge of the pasted command (:data:`Designs`,
+the layout search's), each offer is also one the pasted command designs with.
+Units: mm, N, N/mm.
 """
 
 from __future__ import annotations
@@ -267,10 +269,10 @@ def _round_up(x: float) -> float:
     return round_up(x, 3)
 
 
-def nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool]
-                     ) -> float | None:
+def nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool],
+                    steps: int = REFINE_STEPS) -> float | None:
     """The value nearest ``asked`` (log distance) where ``ok`` holds: the scan's
-    points tried nearest first until one holds, then bisection between it and
+    points tried nearest first until one holds, then ``steps`` bisections between it and
     its neighbour towards ``asked`` (which does not hold)."""
     order = sorted(range(len(values)), key=lambda k: abs(math.log(values[k] / asked)))
     i = next((k for k in order if ok(float(values[k]))), None)
@@ -281,45 +283,131 @@ def nearest_on_scan(values: np.ndarray, asked: float, ok: Callable[[float], bool
             math.log(values[i] / asked)) or ok(float(values[j])):
         return float(values[i])
     lo, hi = float(values[i]), float(values[j])  # lo holds, hi not
-    for _ in range(REFINE_STEPS):
+    for _ in range(steps):
         mid = math.sqrt(lo * hi)
         lo, hi = (mid, hi) if ok(mid) else (lo, mid)
     return lo
 
 
-def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None
-                    ) -> list[Alternative]:
+#: Judge of an option pasted into ``tactcad design``: (the targets, a change of the start's
+#: tables as (field, value) or None) -> whether the command designs with it (its layout
+#: search and validation included, :func:`tactcad.studies.layout_search.paste_judge`).
+Designs = Callable[..., bool]
+#: Bisection steps refining the nearest value a pasted command designs with, where the
+#: scan's own layout's value is refused when pasted (each step a whole layout search).
+PASTE_REFINE_STEPS = 3
+
+
+def pasted_nearest(values: np.ndarray, found: float, asked: float,
+                   offered: Callable[[float], Any], designs: Callable[[Any], bool]
+                   ) -> Any | None:
+    """The offer nearest ``asked`` that the pasted command designs with: ``found`` (the
+    nearest feasible value on one layout) where it does, else the scan ``values`` judged
+    by the pasted command itself (:func:`nearest_on_scan`, on either side of ``asked``:
+    the layout the command reaches may need the value moved the other way).
+
+    Args:
+        values: the scan's points. found: the value the scan found on one layout (a
+            ratio, or a factor on the K_obj range). asked: the asked value (the ratio, or
+            1 for the range). offered: value -> the offer to paste (rounded away from
+            ``asked``). designs: offer -> whether the pasted command designs.
+
+    Returns:
+        The offer, never equal to the asked one's (which is refused), or None when no
+        point of the scan designs.
+    """
+    def ok(x: float) -> bool:
+        return offered(x) != offered(asked) and designs(offered(x))
+
+    if ok(found):
+        return offered(found)
+    near = nearest_on_scan(values, asked, ok, steps=PASTE_REFINE_STEPS)
+    return None if near is None else offered(near)
+
+
+def nearest_targets(data: Mapping[str, Any], targets: Targets, correction=None,
+                    designs: Designs | None = None) -> list[Alternative]:
     """Each target moved alone to the nearest value the design meets, the
     others as asked (see the module docstring); those with no feasible value
-    are left out."""
+    are left out.
+
+    Args:
+        data: the tables the scans design on (mm, N, N/mm). targets: the asked targets.
+        correction: the closed form's correction, or None.
+        designs: the judge of a pasted option (:data:`Designs`), or None: the scans'
+            own design on ``data``. Given, each ratio and range offered is one the pasted
+            command designs with (moved further from the asked value where the scan's
+            layout is not the one the command reaches), and the force is left to the
+            caller's own search (not offered here).
+
+    Returns:
+        The :class:`Alternative` of each target that has one.
+    """
     out = []
-    force = largest_feasible_force(data, targets, correction)
-    if force > 0:
-        out.append(Alternative("target", "--full-scale-force", float(f"{force:.3g}"), True,
-                               force))
+    if designs is None:
+        force = largest_feasible_force(data, targets, correction)
+        if force > 0:
+            out.append(Alternative("target", "--full-scale-force", float(f"{force:.3g}"), True,
+                                   force))
     ratios = np.geomspace(1.05, 1000.0, SCAN_POINTS)
     ratio = nearest_on_scan(ratios, targets.kr_over_km, lambda x: _feasible(
         data, replace(targets, kr_over_km=x), correction))
     if ratio is not None:
         # three digits, rounded away from the asked ratio (it does not hold): the rounded
         # value stays on the feasible side of the edge the scan found
-        ratio = (_round_down(ratio) if ratio < targets.kr_over_km else _round_up(ratio))
-        if _feasible(data, replace(targets, kr_over_km=ratio), correction):
+        asked = targets.kr_over_km
+
+        def ratio_offer(x: float) -> float:
+            return _round_down(x) if x < asked else _round_up(x)
+
+        if designs is None:
+            ratio = ratio_offer(ratio) if _feasible(
+                data, replace(targets, kr_over_km=ratio_offer(ratio)), correction) else None
+        else:
+            ratio = pasted_nearest(ratios, ratio, asked, ratio_offer, lambda x: designs(
+                replace(targets, kr_over_km=x)))
+        if ratio is not None:
             out.append(Alternative("target", "--kr-over-km", ratio, True, 0.0))
     lo, hi = targets.k_obj_range_N_per_mm
     shifts = np.geomspace(1e-2, 1e2, SCAN_POINTS)
     shift = nearest_on_scan(shifts, 1.0, lambda c: _feasible_range(
         data, targets, (lo * c, hi * c), correction))
     if shift is not None:
-        # three digits, the nearest first, then rounded away from the asked range (it does
-        # not hold), so that the rounded range stays on the feasible side of the edge
-        away = _round_up if shift > 1.0 else _round_down
-        for rng in ((float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}")),
-                    (float(f"{away(lo * shift):.12g}"), float(f"{away(hi * shift):.12g}"))):
-            if _feasible_range(data, targets, rng, correction):
-                out.append(Alternative("target", "--kobj-range", rng, True, 0.0))
-                break
+        rng = _range_offer(data, targets, lo, hi, shift, correction) if designs is None else \
+            pasted_nearest(shifts, shift, 1.0, lambda c: _away_range(lo, hi, c), lambda r: (
+                _range_allowed(targets, r) and designs(replace(targets, k_obj_range_N_per_mm=r))))
+        if rng is not None:
+            out.append(Alternative("target", "--kobj-range", rng, True, 0.0))
     return out
+
+
+def _away_range(lo: float, hi: float, shift: float) -> tuple[float, float]:
+    """The K_obj range (N/mm) ``lo``-``hi`` moved by ``shift``, each end to three digits
+    rounded away from the asked range (up when moved up, down when moved down)."""
+    away = _round_up if shift > 1.0 else _round_down
+    return (float(f"{away(lo * shift):.12g}"), float(f"{away(hi * shift):.12g}"))
+
+
+def _range_allowed(targets: Targets, rng: tuple[float, float]) -> bool:
+    """Whether the targets take the K_obj range ``rng`` (N/mm) at all."""
+    try:
+        replace(targets, k_obj_range_N_per_mm=rng)
+    except DesignError:
+        return False
+    return True
+
+
+def _range_offer(data, targets: Targets, lo: float, hi: float, shift: float, correction
+                 ) -> tuple[float, float] | None:
+    """The range offered on one layout's designs: three digits, the nearest first, then
+    rounded away from the asked range (it does not hold), so that the rounded range stays
+    on the feasible side of the edge; never the asked range itself; None when neither
+    designs."""
+    for rng in ((float(f"{lo * shift:.3g}"), float(f"{hi * shift:.3g}")),
+                _away_range(lo, hi, shift)):
+        if rng != (lo, hi) and _feasible_range(data, targets, rng, correction):
+            return rng
+    return None
 
 
 def _with(data: Mapping[str, Any], section: str, values: Mapping[str, Any]) -> dict[str, Any]:
@@ -328,13 +416,33 @@ def _with(data: Mapping[str, Any], section: str, values: Mapping[str, Any]) -> d
     return out
 
 
+#: Steps down (each x0.97 on the 3-digit grid) from a change's largest force on one layout
+#: until the pasted command designs with the change at that force.
+PASTE_FORCE_STEPS = 3
+
+
 def relaxing_changes(data: Mapping[str, Any], targets: Targets, correction=None,
-                     better_than_N: float = 0.0) -> list[Alternative]:
+                     better_than_N: float = 0.0, designs: Designs | None = None
+                     ) -> list[Alternative]:
     """Every other library grade, common sheet thickness and library gauge,
     tried with all targets as asked; the one that relaxes most of each kind
     (grade, sheet, gauge): those meeting every target first, then by the
     largest full-scale force they allow; a change that allows no more than
-    ``better_than_N`` (the design as it is) and meets no target is left out."""
+    ``better_than_N`` (the design as it is) and meets no target is left out.
+
+    Args:
+        data: the tables the changes are tried on. targets: the asked targets.
+        correction: the closed form's correction, or None.
+        better_than_N: the force (N) a change must beat when it meets no target.
+        designs: the judge of a pasted option (:data:`Designs`), or None: the design on
+            ``data``. Given, a change is said to meet every target only where the pasted
+            command designs with it, and a change that does not carries the force (N, 3
+            digits, rounded down) at which the pasted command designs with it, or is left
+            out; the sheet is not tried (the pasted command's layout search varies it).
+
+    Returns:
+        The changes, those meeting every target first.
+    """
     from tactcad.vocabulary.material_library import material_grades, strain_gauges
 
     grade = dict(data.get("material", {})).get("grade")
@@ -345,7 +453,8 @@ def relaxing_changes(data: Mapping[str, Any], targets: Targets, correction=None,
                                          "material": {"name": g, "grade": g}})
                   for g in material_grades() if g != grade]
     candidates += [("sheet.thickness_mm", t, _with(data, "sheet", {"thickness_mm": t}))
-                   for t in SHEET_THICKNESSES_MM if not math.isclose(t, sheet)]
+                   for t in SHEET_THICKNESSES_MM if not math.isclose(t, sheet)
+                   and designs is None]  # a pasted command searches the sheet itself
     candidates += [("strength.gauge", g, _with(data, "strength", {"gauge": g}))
                    for g in strain_gauges() if g != gauge]
     best: dict[str, tuple[Alternative, dict]] = {}
@@ -358,14 +467,35 @@ def relaxing_changes(data: Mapping[str, Any], targets: Targets, correction=None,
             best[field] = (alt, tables)
     out = []
     for alt, tables in best.values():  # the force each best change allows, by whole designs
+        if alt.meets_targets and designs is not None and not designs(
+                targets, (alt.field, alt.value)):  # one layout meets them, the search does not
+            alt = replace(alt, meets_targets=False)
         if not alt.meets_targets:
-            alt = replace(alt, largest_force_N=largest_feasible_force(tables, targets, correction))
+            force = largest_feasible_force(tables, targets, correction)
+            if designs is not None:
+                force = _pasted_force(force, targets, (alt.field, alt.value), designs)
+            alt = replace(alt, largest_force_N=force)
         else:  # the whole design carries the asked force, whatever the base layout's estimate
             alt = replace(alt, largest_force_N=max(alt.largest_force_N,
                                                    targets.full_scale_force_N))
         if alt.meets_targets or alt.largest_force_N > better_than_N:
             out.append(alt)
     return sorted(out, key=_rank)
+
+
+def _pasted_force(force_N: float, targets: Targets, change: tuple[str, Any],
+                  designs: Designs) -> float:
+    """The largest of ``force_N`` (below the asked force, which the search refused) and
+    :data:`PASTE_FORCE_STEPS` steps of x0.97 below it (N, 3 digits, rounded down) at which
+    the pasted command designs with ``change``; 0 when none does (or ``force_N`` is 0)."""
+    force = _round_down(min(force_N, targets.full_scale_force_N * 0.999))
+    for _ in range(PASTE_FORCE_STEPS + 1):
+        if force <= 0:
+            return 0.0
+        if designs(replace(targets, full_scale_force_N=force), change):
+            return force
+        force = _round_down(force * 0.97)
+    return 0.0
 
 
 def _rank(a: Alternative) -> tuple[bool, float]:

@@ -28,7 +28,8 @@ Method (closed form throughout; the caller verifies only the design chosen):
 When none passes, the refusal (:class:`InverseDesignError`, a
 :class:`~tactcad.errors.DesignError`) names each asked target that binds, with
 the limit behind it, and the nearest feasible targets as options to paste,
-each checked by a whole design: the largest force the search itself designs at,
+each judged as pasted, by the search itself (:func:`paste_judge`): the largest force the
+search designs at (the figure a design then reports as its largest across the layouts),
 layouts and validation included (:func:`searched_force`; bound by yield / safety
 factor, fatigue or the gauge's strain), the smallest footprint
 (with the force its layout carries where the asked one is out of reach), the
@@ -56,7 +57,7 @@ from tactcad.design.requirements_section import MAX_FULL_SCALE_FORCE_N, MIN_FULL
 from tactcad.errors import DesignError, DesignErrors, RequirementFailure
 from tactcad.mechanics.correction import range_warnings_unsaid
 from tactcad.vocabulary.process import DEFAULT_CUT_PROCESS, cut_process
-from tactcad.vocabulary.rounding import round_down
+from tactcad.vocabulary.rounding import round_down, round_up
 from tactcad.studies.design_alternatives import (evaluations_kept, nearest_on_scan,
                                                  largest_feasible_force, nearest_targets,
                                                  relaxing_changes)
@@ -332,9 +333,7 @@ def searched_design(data: Mapping[str, Any], targets: Targets, *, fixed: Sequenc
         across = None if footprint_mm is not None else across_layouts_force(
             data, targets, seen, start, layout, validate, name, correction)
         return replace(d, layout_words=layout.words(), **({} if across is None else dict(
-            across_layouts_force_N=max(across[0], d.max_full_scale_force_N),
-            across_layouts_layout=(across[1] if across[0] > d.max_full_scale_force_N
-                                   else layout).words())))
+            across_layouts_force_N=across[0], across_layouts_layout=across[1].words())))
     raise refusal(data, targets, start, seen, fixed, footprint_mm, envelope_of, validate, name,
                   correction)
 
@@ -529,6 +528,7 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
     errors: list[DesignError] = []
     alternatives: list[dict] = []
     columns = int(data["array"]["columns"])
+    designs = paste_judge(data, frozenset(fixed), validate, name, correction)
     with warnings.catch_warnings(), evaluations_kept():  # one layout's force is sought twice
         warnings.simplefilter("ignore")
         if not seen.stack_fit:
@@ -552,7 +552,7 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
         stiff = [(c, m) for c, m in mechs if m.largest_force_N > 0]
         if not stiff:
             errors.append(_stiffness_error(data, targets, mechs))
-            alternatives += _stiffness_alternatives(data, targets, mechs, correction)
+            alternatives += _stiffness_alternatives(data, targets, mechs, correction, designs)
             return _error(errors, alternatives, targets)
         best_c, best_m = max(stiff, key=lambda cm: (cm[1].largest_force_N, -cm[0].distance(start)))
         # the force binds where the best elements fall short of it, or where every layout
@@ -565,8 +565,8 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
             # force was asked above it
             f_best = largest_feasible_force(with_layout(data, best_c), replace(
                 targets, full_scale_force_N=MAX_FULL_SCALE_FORCE_N), correction)
-            offer = None if footprint_mm is not None or f_best <= 0 else searched_force(
-                data, targets, seen, f_best, validate, name, correction)
+            offer = None if footprint_mm is not None else frontier_force(
+                data, targets, seen, best_c, validate, name, correction)
             where = (f"{offer[1].words()}, the layout the search designs at {offer[0]:g} N"
                      if offer else f"{best_c.words()}, the layout whose elements carry most")
             # elements that carry the force asked: named only with a force the search designs
@@ -594,13 +594,15 @@ def refusal(data, targets: Targets, start: FreeLayout, seen: Attempts, fixed, fo
             errors.append(_other_error(seen, targets, asked))
         if footprint_mm is None and (force_binds or not alternatives):
             tables = with_layout(data, best_c)
-            near = nearest_targets(tables, targets, correction)
+            # each judged as pasted: by the search from the start, not on this one layout
+            near = nearest_targets(tables, targets, correction, designs=designs)
             alternatives += [_alt(_option(a), TARGET_WORDS[a.field], "target")
                              for a in near if a.field != "--full-scale-force"]
             alternatives += [_alt(_option(a), a.words(), "change", meets_targets=a.meets_targets,
                                   largest_force_N=a.largest_force_N)
                              for a in relaxing_changes(tables, targets, correction,
-                                                       better_than_N=best_m.largest_force_N)
+                                                       better_than_N=best_m.largest_force_N,
+                                                       designs=designs)
                              if a.field != "sheet.thickness_mm"]
     return _error(errors, alternatives, targets)
 
@@ -610,12 +612,11 @@ def across_layouts_force(data: Mapping[str, Any], targets: Targets, seen: Attemp
                          name: str, correction
                          ) -> tuple[float, FreeLayout]:
     """The largest full-scale force (N) the search designs at across the layouts it searches
-    and its layout, as its refusal would name it (:func:`refusal`: the frontier sought from
-    the layout whose elements carry most, :func:`searched_force`), for a search that
-    designed on ``chosen``: a lab reading a design's largest force must not miss a larger
-    one another sheet gives. Where ``chosen``'s elements carry most, it is ``chosen``'s
-    (force 0 here: the design's own figure is the one to state), at the cost of the web
-    searches of the other layouts alone.
+    and its layout, as its refusal names it (:func:`refusal`: the frontier sought from the
+    layout whose elements carry most, :func:`searched_force`), for a search that designed
+    on ``chosen`` at ``targets``: a lab reading a design's largest force must not miss a
+    larger one another sheet gives, and must read the figure a refusal of a larger force
+    offers, not a layout's own estimate of it. Never less than the force designed.
 
     Args:
         data: the start's raw tables. targets: the asked targets. seen: the asked search's
@@ -624,24 +625,42 @@ def across_layouts_force(data: Mapping[str, Any], targets: Targets, seen: Attemp
         validate, name, correction: as :func:`searched_design`.
 
     Returns:
-        (force N, its layout); (0, ``chosen``) where no other layout carries more.
+        (force N, its layout); (the asked force, ``chosen``) where the frontier is not
+        above it (a force asked between two forces of the 3-digit grid).
     """
+    F = targets.full_scale_force_N
     with warnings.catch_warnings(), evaluations_kept():
         warnings.simplefilter("ignore")
         mechs = [(c, _mechanics(seen, data, c, targets, correction)) for c in seen.stack_fit]
         stiff = [(c, m) for c, m in mechs if m is not None and m.largest_force_N > 0]
-        own = _mechanics(seen, data, chosen, targets, correction)
-        if not stiff:
-            return 0.0, chosen
-        best_c, best_m = max(stiff, key=lambda cm: (cm[1].largest_force_N,
-                                                    -cm[0].distance(start)))
-        if own is not None and best_m.largest_force_N <= own.largest_force_N:
-            return 0.0, chosen
-        f_best = largest_feasible_force(with_layout(data, best_c), replace(
-            targets, full_scale_force_N=MAX_FULL_SCALE_FORCE_N), correction)
-        offer = None if f_best <= 0 else searched_force(data, targets, seen, f_best, validate,
-                                                         name, correction)
-    return (0.0, chosen) if offer is None else offer
+        offer = None
+        if stiff:
+            best_c, _ = max(stiff, key=lambda cm: (cm[1].largest_force_N,
+                                                   -cm[0].distance(start)))
+            offer = frontier_force(data, targets, seen, best_c, validate, name, correction)
+    return (F, chosen) if offer is None or offer[0] < F else offer
+
+
+def frontier_force(data: Mapping[str, Any], targets: Targets, seen: Attempts,
+                   best: FreeLayout, validate: Validate | None, name: str, correction
+                   ) -> tuple[float, FreeLayout] | None:
+    """The largest full-scale force (N, on the 3-digit grid) the search designs at, and its
+    layout: sought from ``best``'s own largest force (whole designs on that layout, sought
+    from the domain's largest force, so the same whatever force was asked), then by the
+    search itself (:func:`searched_force`). One figure for a refusal and a design's report.
+
+    Args:
+        data: the start's raw tables. targets: the asked targets (their force unused).
+        seen: the search's attempts. best: the layout whose elements carry most.
+        validate, name, correction: as :func:`searched_design`.
+
+    Returns:
+        (force N, layout), or None when the search designs at no force tried.
+    """
+    f_best = largest_feasible_force(with_layout(data, best), replace(
+        targets, full_scale_force_N=MAX_FULL_SCALE_FORCE_N), correction)
+    return None if f_best <= 0 else searched_force(data, targets, seen, f_best, validate,
+                                                   name, correction)
 
 
 #: A refusal's offered force: the search is asked again at forces this factor apart,
@@ -654,6 +673,9 @@ OFFER_STEP = 0.97
 OFFER_STEPS_DOWN = 6
 OFFER_DECADE = 0.1
 OFFER_HALVINGS = 16
+#: Steps up from a start force that designs: the first by 1 / :data:`OFFER_STEP`, each
+#: next the last one squared (x1.03, x1.06, x1.13, x1.28, ...), to the domain's largest force.
+OFFER_STEPS_UP = 12
 
 
 def searched_force(data: Mapping[str, Any], targets: Targets, seen: Attempts, start_N: float,
@@ -687,19 +709,25 @@ def searched_force(data: Mapping[str, Any], targets: Targets, seen: Attempts, st
 
 
 def force_frontier(designed: Callable[[float], Any], start_N: float,
-                   floor_N: float = MIN_FULL_SCALE_FORCE_N) -> tuple[float, Any] | None:
+                   floor_N: float = MIN_FULL_SCALE_FORCE_N,
+                   ceiling_N: float = MAX_FULL_SCALE_FORCE_N) -> tuple[float, Any] | None:
     """The largest force on the 3-significant-digit grid at which ``designed`` answers
     (not None), found from ``start_N`` alone, so the same for any force asked above it:
     ``start_N`` rounded down, then steps of :data:`OFFER_STEP` down, then decades down
     (:data:`OFFER_DECADE`) to ``floor_N`` until one designs, then the interval up to the
     force refused above it bisected on a log scale on the grid (a soft K_obj range's
-    layouts may design only far below the best layout's own largest force). Every force
-    returned was itself judged.
+    layouts may design only far below the best layout's own largest force). Where
+    ``start_N`` itself designs, the search steps up (:data:`OFFER_STEPS_UP`, to
+    ``ceiling_N``) until a force is refused, then bisects:
+    the start is one layout's estimate, and the layout the search reaches may carry more
+    (a 0.281 N start on a 6 mm sheet that designs up to 0.284 N), so the answer does not
+    depend on where it started. Every force returned was itself judged.
 
     Args:
         designed: force (N) -> what designs there (e.g. its layout), or None.
         start_N: the force to start from (N, > 0).
         floor_N: the least force tried (N): the domain's least full-scale force.
+        ceiling_N: the largest force tried (N): the domain's largest full-scale force.
 
     Returns:
         (force N, ``designed``'s answer there), or None when none of the forces tried,
@@ -723,6 +751,16 @@ def force_frontier(designed: Callable[[float], Any], start_N: float,
     else:
         return None
     best = (force, got)
+    factor = 1.0 / OFFER_STEP
+    for _ in range(OFFER_STEPS_UP if refused is None else 0):  # the start designs: go up,
+        up = min(round_up(best[0] * factor, 3), round_down(ceiling_N, 3))  # the step squared
+        if up <= best[0]:  # each time it designs again
+            break
+        got = designed(up)
+        if got is None:
+            refused = up
+            break
+        best, factor = (up, got), factor * factor
     for _ in range(OFFER_HALVINGS if refused is not None else 0):
         # the geometric mean (a decade's interval), else the arithmetic one, which falls
         # on a grid force inside the interval whenever there is one
@@ -750,14 +788,72 @@ def _alt(option: str, words: str, kind: str, **more) -> dict:
 
 
 def _option(a) -> str:
-    """An :class:`~tactcad.studies.design_alternatives.Alternative` as options to paste."""
+    """An :class:`~tactcad.studies.design_alternatives.Alternative` as options to paste; a
+    change that does not meet every target with the force (N) it designs at."""
     if a.field.startswith("--"):
         value = " ".join(_fmt(v) for v in a.value) if isinstance(a.value, tuple) else _fmt(a.value)
         return f"{a.field} {value}"
+    force = "" if a.kind != "change" or a.meets_targets or a.largest_force_N <= 0 else \
+        f" --full-scale-force {a.largest_force_N:g}"
     if a.field == "material.grade":
-        return f"--material {a.value}"
-    return f"--set '{a.field}=\"{a.value}\"'" if isinstance(a.value, str) \
-        else f"--set {a.field}={a.value:g}"
+        return f"--material {a.value}{force}"
+    return (f"--set '{a.field}=\"{a.value}\"'" if isinstance(a.value, str)
+            else f"--set {a.field}={a.value:g}") + force
+
+
+def paste_judge(data: Mapping[str, Any], fixed: frozenset[str], validate: Validate | None,
+                name: str, correction) -> Callable[..., bool]:
+    """The judge of an option a refusal offers to paste
+    (:data:`tactcad.studies.design_alternatives.Designs`): whether ``tactcad design`` with
+    it designs, by the search itself (the layouts nearest the start, the force screen,
+    whole designs and validation: :func:`first_design`), not by one layout's design.
+
+    Args:
+        data: the start's raw tables. fixed: the fields of :data:`FREE_FIELDS` the user
+            fixed. validate, name, correction: as :func:`searched_design`.
+
+    Returns:
+        (targets, change) -> bool, each answer kept for the same targets and change;
+        ``change`` is None or (``material.grade`` or a ``section.field``, its value).
+    """
+    kept: dict[tuple[str, str], bool] = {}
+
+    def designs(targets: Targets, change: tuple[str, Any] | None = None) -> bool:
+        key = (repr(targets), repr(change))
+        if key not in kept:
+            tables = changed_start(data, change)
+            layouts = candidate_layouts(layout_of(tables), fixed, tables["element"].get("process"))
+            seen = Attempts([c for c in layouts if stack_fits(tables, c)], {}, [], [])
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                kept[key] = first_design(tables, targets, seen, None, None, validate, name,
+                                         correction) is not None
+        return kept[key]
+
+    return designs
+
+
+def changed_start(data: Mapping[str, Any], change: tuple[str, Any] | None) -> dict[str, Any]:
+    """The start's tables with ``change`` pasted as ``tactcad design`` takes it: a grade
+    (``--material``) replaces the material table, any other ``section.field`` (``--set``)
+    sets that value.
+
+    Args:
+        data: the start's raw tables. change: None, or (field, value).
+
+    Returns:
+        A copy of the tables.
+    """
+    out = copy.deepcopy(dict(data))
+    if change is None:
+        return out
+    field, value = change
+    if field == "material.grade":
+        out["material"] = {"name": value, "grade": value}
+        return out
+    section, key = field.split(".", 1)
+    out[section] = {**out.get(section, {}), key: value}
+    return out
 
 
 def _error(errors: list[DesignError], alternatives: list[dict], targets: Targets
@@ -797,12 +893,12 @@ def _stiffness_error(data, targets: Targets, mechs) -> DesignError:
                        f"{words} (with --kobj-range {' '.join(f'{k:g}' for k in targets.k_obj_range_N_per_mm)})")
 
 
-def _stiffness_alternatives(data, targets, mechs, correction) -> list[dict]:
+def _stiffness_alternatives(data, targets, mechs, correction, designs=None) -> list[dict]:
     if not mechs:
         return []
     tables = with_layout(data, mechs[0][0])
     return [_alt(_option(a), TARGET_WORDS[a.field], "target")
-            for a in nearest_targets(tables, targets, correction)]
+            for a in nearest_targets(tables, targets, correction, designs=designs)]
 
 
 def _footprint_refusal(data, targets: Targets, stiff, footprint_mm, envelope_of, validate,
