@@ -593,21 +593,42 @@ def leftover_staging(target: Path) -> list[Path]:
     return sorted(p for p in found if p.is_dir() and not p.is_symlink())
 
 
-def carry_over(old: Path, new: Path, keep: Callable[[str], bool]) -> list[str]:
+def carry_over(old: Path, new: Path, keep: Callable[[str], bool],
+               copy: bool = False) -> list[str]:
     """Link (or copy) into ``new`` every file of ``old`` whose relative path
-    ``keep`` accepts and ``new`` does not have; returns those paths."""
+    ``keep`` accepts and ``new`` does not have; returns those paths.
+
+    Args:
+        old: the folder the files are in.
+        new: the folder they go into (sub-folders made as needed).
+        keep: which relative paths (POSIX) to carry.
+        copy: copy each file, never link it: for files a writer may write over
+            in ``new`` before it is published (a link would be written through).
+
+    Returns:
+        The relative paths carried, in sorted order.
+    """
     kept = []
     for path in sorted(old.rglob("*")):
         rel = path.relative_to(old).as_posix()
         if path.is_dir() or not keep(rel) or (new / rel).exists():
             continue
         (new / rel).parent.mkdir(parents=True, exist_ok=True)
-        try:
-            os.link(path, new / rel, follow_symlinks=False)
-        except OSError:
-            shutil.copy2(path, new / rel, follow_symlinks=False)
+        _link_or_copy(path, new / rel, copy)
         kept.append(rel)
     return kept
+
+
+def _link_or_copy(source: Path, target: Path, copy: bool) -> None:
+    """Make ``target`` a hard link to ``source``, or a copy of it where it cannot be
+    linked (another file system) or ``copy`` asks for one."""
+    if not copy:
+        try:
+            os.link(source, target, follow_symlinks=False)
+            return
+        except OSError:
+            pass
+    shutil.copy2(source, target, follow_symlinks=False)
 
 
 def publish_dir(staging: Path, target: Path) -> None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import shutil
 from pathlib import Path
 
@@ -45,8 +46,8 @@ def _checks_for(out: Path, sha256: str) -> None:
         encoding="utf-8")
 
 
-def _only_bom(out: Path, *extra: str):
-    return run_cli("export", "--design", str(DEFAULT_DESIGN), "--no-cache", "--out", str(out),
+def _only_bom(out: Path, *extra: str, cache: tuple[str, ...] = ("--no-cache",)):
+    return run_cli("export", "--design", str(DEFAULT_DESIGN), *cache, "--out", str(out),
                    "--only", "bom", *extra)
 
 
@@ -112,3 +113,79 @@ def test_check_results_are_stale_for_any_other_design(tmp_path):
     assert stale_check_results(tmp_path, "b" * 64) == {CHECKS_SCRIPT}
     (tmp_path / CHECKS_SCRIPT).write_text("not one tactcad wrote")
     assert stale_check_results(tmp_path, "a" * 64) == {CHECKS_SCRIPT}
+
+
+def test_only_bom_into_a_full_export_names_the_files_the_folder_keeps(full, exported):
+    """The partial BOM names each part's drawing, DXF and STEP files kept from the earlier
+    export, as the full export's BOM does: the same bytes. The earlier folder's files are
+    copied in before the jobs run, never linked: a hard link to one outside stays as it was."""
+    outside = full.parent / "bom.md.link"
+    os.link(full / "bom.md", outside)
+    r = _only_bom(full)
+    assert r.returncode == 0, r.stderr
+    for name in BOM:
+        assert (full / name).read_bytes() == (exported[0] / name).read_bytes(), name
+    assert outside.read_bytes() == (exported[0] / "bom.md").read_bytes()
+
+
+def test_a_partial_bom_without_the_earlier_files_is_not_reused_where_they_are(full, tmp_path):
+    """``--only bom`` into a new folder names no file (none is there); the store hands that
+    BOM to no run that finds the earlier export's files, and a second run into a copy of
+    the same export reuses the one made there."""
+    store, alone = tmp_path / "store", tmp_path / "alone"
+    again = tmp_path / "again"
+    shutil.copytree(full, again)
+    expected = {name: (full / name).read_bytes() for name in BOM}
+    r = _only_bom(alone, cache=("--cache", str(store)))
+    assert r.returncode == 0, r.stderr
+    assert (alone / "bom.csv").read_bytes() != expected["bom.csv"]
+    assert sorted(p.name for p in alone.iterdir()) == ["bom.csv", "bom.md", "manifest.json"]
+    for out in (full, again):
+        r = _only_bom(out, "--json", cache=("--cache", str(store)))
+        assert r.returncode == 0, r.stderr
+        assert {name: (out / name).read_bytes() for name in BOM} == expected
+    assert json.loads(r.stdout)["jobs_reused"] == 1
+
+
+def test_a_job_reading_the_files_of_jobs_left_out_is_keyed_by_the_files_kept():
+    """:func:`~tactcad.export.selection.with_kept_files`: the kept files' paths and sha256
+    go into the key of a job reading the files of jobs left out, and only of such a job."""
+    from tactcad.export.job import Job
+    from tactcad.export.selection import with_kept_files
+
+    jobs = [Job("step:a", "k1", None), Job("bom", "k2", None, after=("step:a", "dxf:shop"))]
+    kept = [{"path": "dxf/shop.dxf", "sha256": "1" * 64}]
+    assert with_kept_files(jobs, ()) == jobs
+    keyed = with_kept_files(jobs, kept)
+    assert keyed[0] == jobs[0] and keyed[1].key != "k2"
+    other = with_kept_files(jobs, [{"path": "dxf/shop.dxf", "sha256": "2" * 64}])
+    assert other[1].key not in ("k2", keyed[1].key)
+    both = [jobs[0], Job("dxf:shop", "k3", None), jobs[1]]
+    assert with_kept_files(both, kept) == both  # reads only files written now
+
+
+def test_the_earlier_files_are_copied_in_before_the_jobs_only_of_the_same_design(tmp_path):
+    """:func:`~tactcad.export.run.carried_before_jobs`: the files the earlier manifest lists,
+    unchanged, copied (never linked: a writer writing in place would change the earlier
+    export through the link); none of another design's export, nor of a folder with none."""
+    from tactcad.export.run import carried_before_jobs
+
+    out, staging = tmp_path / "out", tmp_path / "staging"
+    (out / "step").mkdir(parents=True)
+    staging.mkdir()
+    (out / "step" / "a.step").write_bytes(b"kept")
+    (out / "b.svg").write_bytes(b"changed by hand")
+    (out / "notes.txt").write_bytes(b"the lab's")
+    files = [{"path": "step/a.step", "sha256": hashlib.sha256(b"kept").hexdigest()},
+             {"path": "b.svg", "sha256": hashlib.sha256(b"as written").hexdigest()}]
+    (out / "manifest.json").write_text(json.dumps(
+        {"design": {"name": "d", "sha256": "a" * 64}, "files": files}), encoding="utf-8")
+    assert carried_before_jobs(out, staging, "b" * 64) == ()
+    assert not any(staging.iterdir())
+    carried = carried_before_jobs(out, staging, "a" * 64)
+    assert [f["path"] for f in carried] == ["step/a.step"]
+    assert sorted(p.relative_to(staging).as_posix() for p in staging.rglob("*")
+                  if p.is_file()) == ["step/a.step"]
+    assert (staging / "step" / "a.step").read_bytes() == b"kept"
+    assert not os.path.samefile(staging / "step" / "a.step", out / "step" / "a.step")
+    assert carried_before_jobs(tmp_path / "none", tmp_path / "s2", "a" * 64) == ()

@@ -250,7 +250,9 @@ def part_files(plan: Plan, staging: Path,
     export kind names for it (:func:`tactcad.export.kinds.bom_file_kinds`, in
     their order: its drawing (SVG), its shop DXF files, its STEP model or, for a
     part without a STEP file of its own, the scene STEP files that show it).
-    Only files that exist are named."""
+    Only files that exist are named: those the run wrote and, in a partial export, those
+    of the earlier export of the same design it keeps (copied in before its jobs run,
+    :func:`tactcad.export.run.carried_before_jobs`)."""
     listers = [kind.files_of_parts(plan, assemblies or {}) for kind in bom_file_kinds()]
 
     def files(spec: PartSpec) -> list[str]:
@@ -364,7 +366,8 @@ def write_bom_files(plan: Plan, staging: Path, log: Callable[[str], None],
     """Write ``bom.csv`` and ``bom.md`` into ``staging`` (see module doc).
 
     Run after the writers of the files it names (drawings, DXF, STEP): only
-    files present in ``staging`` are referenced.
+    files present in ``staging`` are referenced (a partial export's staging folder holds
+    the earlier export's files it keeps too).
 
     Args:
         assembled: :func:`tactcad.assembly.inventory.design_assemblies` of the run's project.

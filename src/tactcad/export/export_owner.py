@@ -162,6 +162,31 @@ def kept_by_partial_export(out: Path, name: str, design_sha256: str,
     return EarlierExport(tuple(kept), tuple(changed), tuple(f["path"] for f in listed))
 
 
+def files_of_same_design(out: Path, design_sha256: str) -> tuple[dict, ...]:
+    """The files of the earlier export in ``out`` that a partial export of the design
+    ``design_sha256`` finds in its folder before its jobs run: every file that export's
+    manifest lists (the manifest itself aside), unchanged since (sha256 as listed), when it
+    is an export of the same design content; none otherwise (no export, another design's:
+    that one is refused once the run knows what it wrote, :func:`kept_by_partial_export`).
+
+    Args:
+        out: the export folder.
+        design_sha256: the exported design's sha256.
+
+    Returns:
+        The earlier manifest's records of those files (each with its ``path`` and
+        ``sha256``), in its order; empty when there are none.
+    """
+    try:
+        manifest = json.loads((Path(out) / MANIFEST).read_text(encoding="utf-8"))
+        earlier_sha = manifest["design"]["sha256"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return ()
+    if earlier_sha != design_sha256:
+        return ()
+    return kept_by_partial_export(out, "", design_sha256, ()).kept
+
+
 def check_results_design(out: Path) -> str | None:
     """The design sha256 the check results in ``out`` (``review/checks.js``, written by
     ``tactcad check``) are for; None when there are none or they cannot be read."""

@@ -14,7 +14,9 @@ failed or killed run leaves the previous export whole (its staging folder is
 removed by the next run); files an earlier export wrote and this one does not
 are gone with the old folder, files tactcad never wrote are kept. A partial export
 (``--only``/``--part``) of the same design keeps the earlier export's other files (carried
-into the staging folder, so the swap stays one step) and lists them in its manifest.
+into the staging folder before its jobs run, so a job reading them, the BOM naming each
+part's files, finds what the published folder holds, and the swap stays one step) and lists
+them in its manifest.
 """
 
 from __future__ import annotations
@@ -36,12 +38,14 @@ from tactcad.atomic import (SYSTEM_DIRS, carry_over, disk_full_error, in_target,
 from tactcad.design.project import Project
 from tactcad.errors import ExportPathError, TactcadError
 from tactcad.export.export_owner import (EarlierExport, default_product_name,
-                                         kept_by_partial_export, refuse_another_designs_export,
+                                         files_of_same_design, kept_by_partial_export,
+                                         refuse_another_designs_export,
                                          stale_check_results, written_by_tactcad)
 from tactcad.export.job import Job, Log, Run
 from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, export_inputs, scene_jobs
 from tactcad.export.manifest import manifest
+from tactcad.export.selection import with_kept_files
 from tactcad.export.worker import SessionWorker, Worker, can_fork, prepared_there, worker_jobs
 from tactcad.catalogue.files import MANIFEST
 from tactcad.store import Store
@@ -395,6 +399,11 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
         if parts is not None:
             run.parts = parts  # share the caller's solids (e.g. with the checks)
         jobs = jobs_of(run)
+        if with_manifest and partial is not None:
+            # the same design's earlier files in place first: a job reading them (the BOM
+            # naming the files the folder holds) finds them, and is keyed by them
+            carried = carried_before_jobs(out, staging, project.plan.design_hash)
+            jobs = with_kept_files(jobs, carried)
         records, ran = run_jobs(run, jobs, store, session, jobs_of)
         for r in records:
             _inside(staging, r["path"])
@@ -443,6 +452,31 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
     return ExportResult(Path(out_dir), files, time.perf_counter() - t0, ran, len(jobs) - ran,
                         builds, run.distinct_parts, len(run.worker_made),
                         [f["path"] for f in earlier.kept])
+
+
+def carried_before_jobs(out: Path, staging: Path, design_sha256: str) -> tuple[dict, ...]:
+    """Copy into ``staging`` the files of the earlier export in ``out`` of the same design,
+    unchanged since it wrote them, before a partial export's jobs run: those jobs write
+    their own files over them, the others are the files the published folder keeps. Copied,
+    not linked: a writer that writes its file in place (the store's copy of a job it kept,
+    a PDF library, a registered kind's own writer) would otherwise write through the link
+    into the earlier export, which must stay whole until the new one is published.
+
+    Args:
+        out: the export folder (``out`` missing or empty: nothing carried).
+        staging: the run's staging folder.
+        design_sha256: the exported design's sha256.
+
+    Returns:
+        The earlier manifest's records of the files carried
+        (:func:`tactcad.export.export_owner.files_of_same_design`).
+    """
+    if not out.is_dir():
+        return ()
+    found = files_of_same_design(out, design_sha256)
+    paths = {f["path"] for f in found}
+    carry_over(out, staging, lambda rel: rel in paths, copy=True)
+    return found
 
 
 def with_inputs(man: dict, inputs: dict) -> dict:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
-from typing import Callable, Sequence
+from typing import Callable, Collection, Sequence
 
 from tactcad.errors import DesignError
 from tactcad.export.job import Job, Run
@@ -49,7 +49,8 @@ def select_jobs(jobs: Sequence[Job], only: Sequence[str] = (),
     :attr:`~tactcad.export.job.Job.for_part`) stands, with ``parts``, for one job per
     named part it has files of. A kept job that reads the files of jobs left out (the
     BOM lists the files present) is given a key of its own, so the store never hands it
-    the copy a full export made.
+    the copy a full export made; the earlier export's files it finds in their place go
+    into that key too (:func:`with_kept_files`, once the export folder is known).
 
     Args:
         jobs: every job of the run, in order.
@@ -76,8 +77,34 @@ def select_jobs(jobs: Sequence[Job], only: Sequence[str] = (),
                           "a selection that writes at least one file",
                           f"--part keeps {PART_KEEPS}")
     names = sorted(j.name for j in keep)
-    return [j if set(j.after) <= set(names)
-            else replace(j, key=content_key("partial-set", j.key, names)) for j in keep]
+    return [replace(j, key=content_key("partial-set", j.key, names))
+            if reads_left_out(j, names) else j for j in keep]
+
+
+def reads_left_out(job: Job, names: Collection[str]) -> bool:
+    """True if ``job`` reads the files of a job not among ``names`` (the jobs run)."""
+    return not set(job.after) <= set(names)
+
+
+def with_kept_files(jobs: Sequence[Job], kept: Sequence[dict]) -> list[Job]:
+    """The selected ``jobs``, each that reads the files of jobs left out keyed by the
+    earlier export's files it finds in their place too (``kept``: the manifest records,
+    path and sha256, of the files a partial export carries into its staging folder before
+    its jobs run), so the store hands such a job only to a run that finds the same files.
+
+    Args:
+        jobs: the jobs of a partial export (:func:`select_jobs`), in order.
+        kept: the earlier export's records of the files found beside them; empty: none.
+
+    Returns:
+        The jobs, in order; unchanged when ``kept`` is empty.
+    """
+    if not kept:
+        return list(jobs)
+    found = sorted((f["path"], f.get("sha256")) for f in kept)
+    names = {j.name for j in jobs}
+    return [replace(j, key=content_key("kept-files", j.key, found))
+            if reads_left_out(j, names) else j for j in jobs]
 
 
 def _jobs_with_parts(jobs: Sequence[Job], parts: Sequence[str]) -> list[tuple[Job, str | None]]:
