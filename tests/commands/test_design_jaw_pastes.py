@@ -18,6 +18,7 @@ JAW_CASE = ["design", "--jaw", "10", "--kr-over-km", "10", "--kobj-range", "0.5"
 @pytest.mark.parametrize("asked", [
     ["--full-scale-force", "0.3", "--kobj-accuracy", "0.05"],
     ["--full-scale-force", "0.3", "--columns", "12"],
+    ["--kr-over-km", "3", "--full-scale-force", "0.5", "--kobj-accuracy", "0.05"],
 ])
 def test_every_offer_of_a_jaw_refusal_designs_when_pasted(tmp_path, asked):
     line = [*JAW_CASE, *asked, "--json"]
