@@ -1466,6 +1466,38 @@ def comb_of_candidates(tried: list[CombCandidate], targets: Targets, room: Any, 
     return CombDesign(data, plan_from_dict(data), room, tuple(tried), fasteners, best)
 
 
+def designs_in_preference(result: CombDesign, targets: Targets, room: Any, columns: int, *,
+                          name: str = "grasper_insert", envelope_of: Callable | None = None,
+                          max_grasp_force_N: float | None = None) -> Iterator[CombDesign]:
+    """The search's design, then the comb of each other candidate that counts, in the order
+    the search prefers them (:func:`in_preference`), each made as :func:`comb_of_candidates`
+    makes the chosen one (its fasteners, its reasons, the grasp where asked): so that a
+    requirement judged after the search (``--kobj-accuracy``) takes the first that meets it.
+
+    Args:
+        result: the search's answer (:func:`comb_for_jaw`).
+        targets: the targets searched (N/mm, N). room: the jaw's room (mm).
+        columns: the comb's columns. name, envelope_of, max_grasp_force_N: as
+            :func:`comb_for_jaw` takes them (N for the grasp).
+
+    Returns:
+        An iterator of :class:`CombDesign`, each with every candidate tried; a candidate
+        its fasteners or the grasp refuse is passed over.
+    """
+    yield result
+    first = result.chosen
+    for c in in_preference(counting(list(result.candidates))):
+        if first is not None and (c.sheet_mm, c.km_scale) == (first.sheet_mm, first.km_scale):
+            continue
+        try:
+            made = comb_of_candidates([c], targets, room, columns, name=name,
+                                      envelope_of=envelope_of,
+                                      max_grasp_force_N=max_grasp_force_N)
+        except DesignError:
+            continue
+        yield replace(made, candidates=result.candidates)
+
+
 def refusal_option(base: dict, tried: list[CombCandidate], targets: Targets, room: Any,
                    columns: int, grade: str | None, envelope_of: Callable | None) -> str:
     """The option :func:`comb_for_jaw`'s refusal names when no candidate of ``tried``
