@@ -1436,7 +1436,6 @@ def pasted_refusal(args: argparse.Namespace, option: str) -> Exception | None:
     import tempfile
     import warnings
 
-    from tactcad.cli import parse_checked
     from tactcad.errors import TactcadError
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -1445,12 +1444,46 @@ def pasted_refusal(args: argparse.Namespace, option: str) -> Exception | None:
         try:
             with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                pasted = parse_checked(["design", *words])
+                pasted = parsed_design_line(words)
                 pasted.pasted_check = True  # its own offers are not pasted again
                 _run(pasted)
         except TactcadError as exc:
             return exc
+        except (OSError, ValueError):  # no room to try it, or a line the parser refuses:
+            return None  # offered as it was
     return None
+
+
+class _LineParser(argparse.ArgumentParser):
+    """A parser that raises ValueError where argparse would print and exit."""
+
+    def error(self, message: str):  # argparse's hook; it must not return
+        raise ValueError(message)
+
+
+def parsed_design_line(words: Sequence[str]) -> argparse.Namespace:
+    """``tactcad design WORDS`` parsed and checked as the command line is
+    (:func:`tactcad.commands.options.validate_options`), without the program's parser (the
+    command reads no module above it).
+
+    Args:
+        words: the command's options.
+
+    Returns:
+        The parsed options.
+
+    Raises:
+        ValueError: argparse refuses the line. DesignError: a value the option rules refuse.
+    """
+    from tactcad.commands import settle_design
+    from tactcad.commands.options import validate_options
+
+    parser = _LineParser(prog="tactcad", allow_abbrev=False)
+    register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["design", *words])
+    validate_options(parser, args)
+    settle_design(args)
+    return args
 
 
 def widened_paste(option: str, refusal: Exception) -> str | None:
