@@ -890,12 +890,70 @@ def test_tables_a_refusals_search_knows_refused_are_refused_and_not_validated(mo
                         skipped.append(webbed_d)  # not planned either
                     elif d is not None and comb_design.stop_gap_too_wide(d):
                         known.append(d)
-    assert known and searched and any(bounded)
+    # the walk validates (the patch sees it); the search may validate none at all: the
+    # sheets' starting plans are kept per process, and here every candidate's tables are
+    # known refused before they are planned
+    assert known and validated and any(bounded)
     keys = {comb_design.exact_key(d) for d in searched}
     assert [d for d in known + skipped if comb_design.exact_key(d) in keys] == []
     for d in known:
         with pytest.raises(DesignError):
             real(d)
+
+
+@pytest.mark.parametrize("point, fits", [
+    (((26.2328, (0.946799, 15.7359), 2.51819), 8), False),  # an atlas point (seed 0)
+    (((10.0, (0.5, 5.0), 1.0), 6), True),  # stops that fit at some counts and sheets
+])
+def test_every_stop_gap_past_the_tables_is_known_before_the_stops_are_set(point, fits):
+    """Each candidate the refusal's search of other column counts meets whose stop gap,
+    once set, is past the tables' range is known to be before its tables are planned
+    (:func:`stops_past_the_tables`), those whose notch fatigue limit is at or below the
+    rating (the stop then engages at STOP_MULTIPLE x the rating) among them; none whose
+    stops fit is."""
+    from tactcad.studies import comb_design
+    from tactcad.studies.design_atlas import tissue_default
+
+    (kr_over_km, kobj, force), columns = point
+    targets = Targets(kr_over_km, kobj, force, tissue=tissue_default())
+    base, room = comb_design.searched_base(BASE, columns), jaw_room("10")
+    wide, fitting = [], []
+    with comb_design.web_solves_kept(), comb_design.candidates_weighed():
+        for count in sum(comb_design.other_column_counts(columns), ()):
+            for sheet in comb_design.sheets_of(base):
+                for scale in comb_design.stop_fitting_scales(targets):
+                    refused, webbed, _ = comb_design.webbed_candidate(
+                        base, sheet, scale, count, room, targets, TI)
+                    if refused is not None \
+                            or comb_design.notch_below_a_web(webbed.tables, webbed.webs):
+                        continue
+                    _, d = comb_design.stopped_candidate(webbed)
+                    if d is None:
+                        continue
+                    past = comb_design.stops_past_the_tables(webbed)
+                    if comb_design.stop_gap_too_wide(d):
+                        wide.append(past)
+                    else:
+                        fitting.append(past)
+    assert wide and all(wide)
+    assert bool(fitting) == fits and not any(fitting)
+
+
+@pytest.mark.parametrize("fatigue_N", [0.5, 0.999, 1.0, 1.0000001, 1.2, 2.0, 10.0, None])
+def test_the_least_engagement_multiple_bounds_the_stops_engagement(fatigue_N):
+    """The multiple :func:`least_engagement_multiple` gives is at most the engagement over
+    the rating for any lowest fatigue limit at or below the notch's (the gauge's may be
+    lower), and is STOP_MULTIPLE where the notch's is at or below the rating."""
+    from tactcad.mechanics.hard_stops import engagement_force_N
+    from tactcad.studies.comb_design import STOP_MULTIPLE, least_engagement_multiple
+
+    rated = 1.0
+    multiple = least_engagement_multiple(fatigue_N, rated)
+    for lowest in [0.1, 0.9, 1.0, 1.0 + 1e-12, 1.1, 1.5, 3.0, 20.0, math.inf]:
+        if fatigue_N is not None and lowest > fatigue_N:
+            continue
+        assert multiple <= engagement_force_N(STOP_MULTIPLE, rated, lowest) / rated
+    assert (multiple == STOP_MULTIPLE) == (fatigue_N is not None and fatigue_N < 1.0)
 
 
 def copy_of(d: dict) -> dict:

@@ -1616,11 +1616,13 @@ def stops_past_the_tables(w: WebbedCandidate) -> bool:
     tables are planned: the gap it sets is at least the rated tip deflection F / K times
     the stop's lever over the arm (:func:`tactcad.mechanics.hard_stops.stop_gap_for` at an
     engagement of at least the rating,
-    :func:`~tactcad.mechanics.hard_stops.engagement_force_N`, rounded up), K the element's
-    closed-form K with its solved web (:func:`closed_form_k`, the strength record's to the
-    bit) and the lever the starting plan's (the arm plus half the tip: no web or gap moves
-    it). Such tables are refused with their stops set, or before if their webs are: either
-    way no plan and no rating. Past the range by :data:`STOP_BOUND_SLACK_REL` at least.
+    :func:`~tactcad.mechanics.hard_stops.engagement_force_N`, rounded up; of
+    :data:`STOP_MULTIPLE` x the rating where the element's notch fatigue limit is at or
+    below it, :func:`least_engagement_multiple`), K the element's closed-form K with its
+    solved web (:func:`closed_form_k`, the strength record's to the bit) and the lever the
+    starting plan's (the arm plus half the tip: no web or gap moves it). Such tables are
+    refused with their stops set, or before if their webs are: either way no plan and no
+    rating. Past the range by :data:`STOP_BOUND_SLACK_REL` at least.
 
     Args:
         w: the candidate (:func:`webbed_candidate`; its full-scale force in N).
@@ -1629,11 +1631,13 @@ def stops_past_the_tables(w: WebbedCandidate) -> bool:
         True only when some element's gap surely exceeds the tables' range.
     """
     from tactcad.design.comb_plan import MAX_STOP_GAP_MM
+    from tactcad.mechanics.element_strength import notch_fatigue_strength
 
     plan, force = w.start, w.targets.full_scale_force_N
     if plan.material.yield_strength_MPa is None:
         return False  # setting its stops refuses the material: as the search does
     levers = {stop.element: stop.lever_mm for stop in plan.hard_stops}
+    notch = notch_fatigue_strength(plan.material)
     for number, web in ((1, w.webs[0]), (plan.columns + 1, w.webs[1])):
         g = replace(plan.element(number).geometry, web_thickness_mm=web)
         try:
@@ -1642,10 +1646,53 @@ def stops_past_the_tables(w: WebbedCandidate) -> bool:
             return False  # judged as the search judges it
         if number not in levers or not (math.isfinite(k) and k > 0):
             return False
-        least = force / k * levers[number] / g.arm_length_mm
+        multiple = least_engagement_multiple(
+            None if notch is None else notch_fatigue_force_N(g, notch.strength_MPa), force)
+        least = multiple * force / k * levers[number] / g.arm_length_mm
         if least > MAX_STOP_GAP_MM * (1.0 + STOP_BOUND_SLACK_REL):
             return True
     return False
+
+
+def notch_fatigue_force_N(g: Any, notch_strength_MPa: float) -> float | None:
+    """An element's notch fatigue limit (N) at the closed form: the notch fatigue strength
+    over the peak stress per N (:func:`tactcad.mechanics.element_strength.closed_form_stress`'s,
+    a function of the web, notch radius, arm and sheet alone), the strength record's
+    ``fatigue_force_N`` to the bit (as :func:`strength_bound_N` reads it).
+
+    Args:
+        g: the element's geometry (its solved web, mm). notch_strength_MPa: the material's
+            fatigue strength at the notch (MPa).
+
+    Returns:
+        The force (N); None without a finite positive stress.
+    """
+    from tactcad.mechanics.element_strength import peak_stress_per_newton
+
+    s = float(peak_stress_per_newton(g.web_thickness_mm, g.notch_radius_mm, g.arm_length_mm,
+                                     g.sheet_thickness_mm))
+    return notch_strength_MPa / s if math.isfinite(s) and s > 0 else None
+
+
+def least_engagement_multiple(notch_fatigue_N: float | None, rated_N: float) -> float:
+    """The least multiple of the rating a stop can be set to engage at
+    (:func:`tactcad.mechanics.hard_stops.engagement_force_N` over the rating), knowing only
+    the element's notch fatigue limit: its lowest fatigue limit is at most that one (the
+    gauge's may be lower), so where the notch's is at or below the rating (by
+    :data:`STOP_BOUND_SLACK_REL`) so is the lowest, and the stop engages at
+    :data:`STOP_MULTIPLE` x the rating; else the lowest limit may lie just above the
+    rating, and the stop engages just above it (1).
+
+    Args:
+        notch_fatigue_N: the element's notch fatigue limit (N; None: unknown).
+        rated_N: the rated full-scale force (N), > 0.
+
+    Returns:
+        The multiple (>= 1).
+    """
+    if notch_fatigue_N is not None and notch_fatigue_N <= rated_N * (1.0 - STOP_BOUND_SLACK_REL):
+        return STOP_MULTIPLE
+    return 1.0
 
 
 #: How far (relative) :func:`stops_past_the_tables`' least gap must pass the tables' range:
