@@ -69,3 +69,30 @@ def test_a_run_whose_kept_freecad_dies_is_made_by_a_new_process(freecad, tmp_pat
         assert _files(tmp_path / "next", 10.0) == fresh and fr._Kept.server is not dead
     finally:
         fr.keep_freecad(False)
+
+
+def test_freecad_started_ahead_writes_the_bytes_of_a_new_one_and_ends_with_its_run(
+        freecad, tmp_path):
+    """An export starts FreeCAD while it imports the kernel (``start_freecad_ahead``): the
+    run's review files are its one request, the same bytes a FreeCAD started for them
+    writes, and it ends with that run; one no run took is ended by the function returned.
+    A process forked meanwhile (the drawing worker) lets go of its stdin, so FreeCAD sees
+    that pipe close when the run's process closes it."""
+    fresh = _files(tmp_path / "fresh", 10.0)
+    unclaimed = fr.start_freecad_ahead()
+    server = fr._Ahead.server
+    assert server is not None and server.alive
+    child = os.fork()
+    if child == 0:  # the forked worker's start: its copies of the pipes let go
+        fr.forget_ahead_in_child()
+        os._exit(0 if all(os.readlink(f"/proc/self/fd/{fd}") == os.devnull
+                          for fd in server.fds()) else 1)
+    _, status = os.waitpid(child, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+    assert _files(tmp_path / "ahead", 10.0) == fresh
+    assert fr._Ahead.server is None and not server.alive  # ended with its run
+    unclaimed()  # taken: nothing to end
+    unclaimed = fr.start_freecad_ahead()
+    left = fr._Ahead.server
+    unclaimed()  # no run took it: ended
+    assert fr._Ahead.server is None and not left.alive

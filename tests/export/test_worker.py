@@ -129,6 +129,49 @@ SCRIPT = textwrap.dedent('''
         records, ran = run_jobs(Run(load_project(), staging, print, store), jobs, store)
         print(json.dumps({"main": main_pid, "records": records}))
         sys.exit(0)
+    if sys.argv[2] == "apart":  # jobs that read solids, and a prepare: forked before the kernel
+        from tactcad.export.jobs import keeping_run_results
+        from tactcad.store import kept_result
+
+        def facts():
+            return {"pid": os.getpid(), "kernel": "OCP" in sys.modules}
+
+        def prepare(run):
+            with keeping_run_results(run):
+                kept_result("test prepared apart", facts, "facts")
+
+        def reads_prepared(run):
+            with keeping_run_results(run):
+                made = kept_result("test prepared apart", facts, "facts")
+            return [{"path": "y", "part": "y", "kind": "test", "pid": os.getpid(),
+                     "prepared": made}]
+
+        def pid_of(name):
+            def make(run):
+                return [{"path": name, "part": name, "kind": "test", "pid": os.getpid()}]
+            return make
+
+        events = []
+
+        def ahead():  # another program's start-up, begun before the kernel's import
+            events.append({"ahead": "OCP" in sys.modules})
+            return lambda: events.append({"ended": True})  # start never took it: ended
+        class Started:  # a start that never takes what ``ahead`` began
+            def result(self):
+                return []
+
+            def cancel(self):
+                pass
+        store = Store(staging.parent / "store")
+        run = Run(load_project(), staging, print, store)
+        nut = run.array[0]["nut_M2"]
+        jobs = [Job("w0", "k0", pid_of("w0"), (nut,), worker=True),
+                Job("w1", "k1", pid_of("w1"), (nut,), worker=True),
+                Job("y", "ky", reads_prepared, after=("w0", "w1"), prepare=prepare),
+                Job("fc", "kfc", None, start=lambda run: Started(), ahead=ahead)]
+        records, ran = run_jobs(run, jobs, store)
+        print(json.dumps({"main": main_pid, "records": records, "events": events}))
+        sys.exit(0)
     records, ran = run_jobs(Run(load_project(), staging, print), jobs, Store(None))
     print(json.dumps({"main": main_pid, "ran": ran, "kernel": "OCP" in sys.modules,
                       "records": records,
@@ -194,14 +237,31 @@ def test_a_worker_forked_for_jobs_that_read_solids_inherits_the_kernel(tmp_path)
 
 
 @pytest.mark.slow
-def test_a_jobs_prepare_runs_in_the_worker_and_is_read_back_here(tmp_path):
+def test_a_jobs_prepare_runs_in_another_process_and_is_read_back_here(tmp_path):
     """With a store that has a folder, the review page's kind of ``prepare`` (reading no
-    file) runs in the forked worker first; the job, in this process, reads its kept
-    result back instead of working it out again."""
+    file) runs in a forked process; the job, in this process, reads its kept result back
+    instead of working it out again."""
     out = run_script(tmp_path, "prepared")
     rec = {r["path"]: r for r in out["records"]}
     assert rec["y"]["pid"] == out["main"]
     assert rec["y"]["prepared_in"] != out["main"]  # kept by the worker, read back here
+
+
+@pytest.mark.slow
+def test_a_jobs_prepare_runs_apart_before_the_kernel_is_imported(tmp_path):
+    """A run whose jobs read solids imports the kernel before it forks its drawing worker;
+    the review page's kind of ``prepare`` runs in a process forked before that import (on
+    the core the import leaves idle), neither this process nor the worker, and another
+    program's start-up (``ahead``: FreeCAD's) begins before the import too, ended at the
+    run's end when no ``start`` took it."""
+    out = run_script(tmp_path, "apart")
+    rec = {r["path"]: r for r in out["records"]}
+    worker = rec["w0"]["pid"]
+    assert worker != out["main"] and rec["y"]["pid"] == out["main"]
+    made = rec["y"]["prepared"]
+    assert made["pid"] not in (out["main"], worker)
+    assert made["kernel"] is False  # forked before the kernel's import
+    assert out["events"] == [{"ahead": False}, {"ended": True}]
 
 
 @pytest.mark.slow

@@ -291,12 +291,36 @@ class FreecadServer:
         self._tmp.cleanup()
 
 
+    def end(self) -> None:
+        """End FreeCAD at once, its requests answered or not (a server of one run, whose
+        files are written: nothing is left to wait for), and remove its folder."""
+        if self.alive:
+            self._proc.kill()
+        self._proc.wait()
+        try:
+            self._proc.stdin.close()
+        except OSError:  # a request not sent whole: the pipe is gone with FreeCAD
+            pass
+        self.close()
+
+    def fds(self) -> list[int]:
+        """The file descriptors this process holds on FreeCAD (its stdin and stdout pipes,
+        its log), which a process forked from this one must not keep open
+        (:func:`forget_ahead_in_child`)."""
+        return [f.fileno() for f in (self._proc.stdin, self._proc.stdout, self._log)
+                if f is not None and not f.closed]
+
+
 class ServedRun:
     """A :class:`FreecadRun`'s counterpart on a :class:`FreecadServer`; when
-    that FreeCAD ends before answering, the run is made again by a new one."""
+    that FreeCAD ends before answering, the run is made again by a new one.
+    ``own``: the server serves this run alone (:func:`start_freecad_ahead`) and is
+    ended with it."""
 
-    def __init__(self, server: FreecadServer, payload: Any, timeout_s: float = 900.0):
+    def __init__(self, server: FreecadServer, payload: Any, timeout_s: float = 900.0,
+                 own: bool = False):
         self._server, self._payload, self._timeout = server, payload, timeout_s
+        self._own = own
         self._tmp = tempfile.TemporaryDirectory(prefix="tactcad-fc-")
         self._out = Path(self._tmp.name) / "result.json"
         self._number = server.submit(payload, self._out)
@@ -312,6 +336,8 @@ class ServedRun:
             self._server.close()  # busy or broken: the next run starts another
             raise
         finally:
+            if self._own:
+                self._server.end()
             self._tmp.cleanup()
 
     def cancel(self) -> None:
@@ -336,9 +362,66 @@ def keep_freecad(on: bool) -> None:
     _Kept.wanted = on
 
 
+class _Ahead:
+    """The FreeCAD process started ahead of one run's review files (:func:`start_freecad_ahead`)."""
+
+    server: FreecadServer | None = None
+
+
+def start_freecad_ahead() -> Callable[[], None]:
+    """Start ``freecadcmd`` in its serving mode now, for the review files of the run about
+    to begin (:func:`_start_freecad` hands it their one request), so FreeCAD's start-up
+    (about 0.8 CPU s) runs while this process imports the CAD kernel, with the second
+    core otherwise idle; the files are the same bytes a FreeCAD started for them writes.
+    Nothing is started when FreeCAD is not installed, one is kept already
+    (:func:`keep_freecad`) or one was started ahead and not yet taken.
+
+    Returns:
+        A function ending that FreeCAD if no run took it (called when the run ends).
+    """
+    if _Kept.wanted or _Ahead.server is not None or freecadcmd() is None:
+        return lambda: None
+    try:
+        server = FreecadServer()
+    except (OSError, RuntimeError):  # no process to be had: the run starts its own
+        return lambda: None
+    _Ahead.server = server
+
+    def unclaimed() -> None:
+        if _Ahead.server is server:
+            _Ahead.server = None
+            server.end()
+    return unclaimed
+
+
+def forget_ahead_in_child() -> None:
+    """In a process forked from the run's (its drawing worker), let go of the FreeCAD
+    started ahead: its pipes and log are pointed at ``/dev/null`` (the numbers stay taken,
+    so nothing of this process writes to them or closes another file by them), so FreeCAD
+    sees its stdin end when the run's process closes it, whatever this one does."""
+    server = _Ahead.server
+    if server is None:
+        return
+    null = os.open(os.devnull, os.O_RDWR)
+    try:
+        for fd in server.fds():
+            os.dup2(null, fd)
+    finally:
+        os.close(null)
+
+
 def _start_freecad(payload: Any):
-    """The review script on the kept FreeCAD process when there is one
+    """The review script on the FreeCAD started ahead for this run
+    (:func:`start_freecad_ahead`), else on the kept one when there is one
     (started again when it has ended), else in a new one."""
+    ahead, _Ahead.server = _Ahead.server, None
+    if ahead is not None:
+        if ahead.alive:
+            try:
+                return ServedRun(ahead, payload, own=True)
+            except OSError:  # it ended between the check and the request
+                pass
+        ahead.end()
     if _Kept.wanted and freecadcmd() is not None:
         try:
             if _Kept.server is None or not _Kept.server.alive:

@@ -100,6 +100,10 @@ class Job:
     #: a handle with ``result() -> records`` and ``cancel()``; the run goes on
     #: with the other jobs meanwhile (both cores busy) and collects it at the end
     start: Callable[[Run], Any] | None = None
+    #: for such a job: ``ahead()`` starts that program's start-up before this process
+    #: imports the CAD kernel (the second core is idle then), returning a function that
+    #: ends it if ``start`` never took it
+    ahead: Callable[[], Callable[[], None]] | None = None
     #: may run in the run's second process (:mod:`tactcad.export.worker`): it
     #: reads only the plan, the solids in ``needs`` and the files of ``after``
     worker: bool = False

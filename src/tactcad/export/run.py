@@ -46,7 +46,8 @@ from tactcad.assembly.rig_models import get_scene_spec
 from tactcad.export.jobs import all_jobs, export_inputs, scene_jobs
 from tactcad.export.manifest import manifest
 from tactcad.export.selection import with_kept_files
-from tactcad.export.worker import SessionWorker, Worker, can_fork, prepared_there, worker_jobs
+from tactcad.export.worker import (Preparing, SessionWorker, Worker, can_fork, prepared_there,
+                                   worker_jobs)
 from tactcad.catalogue.files import MANIFEST
 from tactcad.store import Store
 
@@ -95,11 +96,12 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     waits for the forked worker's files, this process takes back the last job
     handed to it that it has not begun and no job left to it reads
     (:func:`_taken_back`), so both cores work until the end (``tactcad watch``'s
-    worker keeps its jobs: it keeps the solids it was handed). A forked worker first
-    runs the ``prepare`` of this process's jobs (the review page's facts, kernel-free)
-    while this process builds the solids, when the store has a folder to carry the
-    results back in (:func:`tactcad.export.worker.prepared_there`); such a job waits for
-    it before it runs.
+    worker keeps its jobs: it keeps the solids it was handed). The ``prepare`` of this
+    process's jobs (the review page's facts, kernel-free) runs in a process forked before
+    this one imports the kernel (:class:`tactcad.export.worker.Preparing`), so it fills
+    the second core during that import, when the store has a folder to carry the results
+    back in (:func:`tactcad.export.worker.prepared_there`); such a job waits for it before
+    it runs.
 
     Each job run is kept in ``store`` as soon as it finishes (its entry written
     in one step, :meth:`~tactcad.store.Store.keep`; the worker keeps its own jobs
@@ -118,20 +120,26 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     if not todo:
         return [r for job in jobs for r in done[job.name]], 0
     worker = None
-    prepares: list[Job] = []
+    unclaimed: list[Callable[[], None]] = []  # ends what was started ahead and never taken
+    # name -> the run of that job's prepare in a process of its own (a fork only)
+    preparing: dict[str, Preparing] = {}
     if session is not None and planner is not None:
         handed = worker_jobs(todo, done)
         if handed:
             worker = session.begin(run, planner)
     else:
         handed = worker_jobs(todo, done) if can_fork() else []
-        # work that reads no file (the review page's facts), done in the worker first
-        # while this process builds the solids, where the store carries it back
-        if prepared_there(run):
-            prepares = [job for job in todo if job.prepare is not None and not job.worker]
+        # work that reads no file (the review page's facts), done in a process forked
+        # before this one imports the kernel, where the store carries it back
+        if can_fork() and prepared_there(run):
+            preparing = _prepared_apart(run, [job for job in todo
+                                              if job.prepare is not None and not job.worker])
+        if can_fork():  # another program's start-up while this process imports the kernel
+            unclaimed = [job.ahead() for job in todo if job.start is not None
+                         and job.ahead is not None]
         if len(handed) > 1:
             try:
-                worker = Worker(run, handed, prepares, kernel=any(job.needs for job in todo))
+                worker = Worker(run, handed, kernel=any(job.needs for job in todo))
             except OSError:  # no process to be had (memory, process limit): all of it here
                 pass
     if worker is None:
@@ -139,8 +147,6 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     by_name = {job.name: job for job in todo}
     futures = {}
     started = {}
-    # name -> the worker's run of that job's prepare (a forked worker only)
-    preparing = _prepared_in(worker, prepares) if isinstance(worker, Worker) else {}
 
     def finished(name: str, records: list[dict]) -> None:
         """``name`` is done: its records noted and its files kept in the store."""
@@ -175,7 +181,7 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             run.parts.solid(spec)
         started = {job.name: job.start(run) for job in todo if job.start is not None}
         here = [job for job in todo if job.start is None and job.name not in futures]
-        prepared: set[str] = set(preparing)  # prepared in the worker: not here again
+        prepared: set[str] = set(preparing)  # prepared apart: not here again
         # a worker kept across runs (tactcad watch) keeps the solids it was handed: its jobs
         # stay its own; a worker forked for this run may hand back what it has not begun
         take_back = ((lambda: _taken_back(handed, futures, done)) if isinstance(worker, Worker)
@@ -196,45 +202,51 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     finally:
         if worker is not None and len(done) < len(jobs):  # an error or an interrupt
             worker.kill()
+        for pending in {id(p): p for p in preparing.values()}.values():
+            pending.kill()  # ended already, unless the run failed or stopped first
+        for end in unclaimed:
+            end()
         for pending in started.values():
             pending.cancel()
     return [r for job in jobs for r in done[job.name]], len(todo)
 
 
-def _prepared_in(worker: Worker, prepares: Sequence[Job]) -> dict:
-    """Hand ``prepares``' ``prepare`` to the forked ``worker`` (:meth:`Worker.prepare`):
-    {job name: its future}; those it cannot take (a pool already broken) are left out,
-    and this process prepares them itself.
+def _prepared_apart(run: Run, prepares: Sequence[Job]) -> dict:
+    """Fork a process for ``prepares``' ``prepare`` (:class:`~tactcad.export.worker.Preparing`),
+    before this process imports the kernel: {job name: that process}; empty when there is
+    none to prepare or no process to be had (each job then prepares for itself).
 
     Args:
-        worker: the run's forked worker.
+        run: the export run (its store has a folder).
         prepares: jobs of this process with a ``prepare``.
 
     Returns:
-        {job name: future of its prepare in the worker}.
+        {job name: the :class:`~tactcad.export.worker.Preparing` process}.
     """
-    preparing = {}
-    for job in prepares:
-        try:
-            preparing[job.name] = worker.prepare(job)
-        except RuntimeError:  # BrokenProcessPool (a RuntimeError): prepared here instead
-            break
-    return preparing
+    if not prepares:
+        return {}
+    try:
+        apart = Preparing(run, prepares)
+    except OSError:  # no process to be had: each job prepares for itself
+        return {}
+    return {job.name: apart for job in prepares}
 
 
 def _wait_prepared(pending) -> None:
-    """Wait for a job's ``prepare`` run in the worker (None: none was), so the job reads
-    what it kept in the store; if it failed there, or the worker died, the job works that
-    out itself as it would have (the failure is the job's to say, not the worker's).
+    """Wait for a job's ``prepare`` run in a process of its own (None: none was), so the
+    job reads what it kept in the store; if it failed there, or that process died, the job
+    works that out itself as it would have (the failure is the job's to say, not the
+    process's).
 
     Args:
-        pending: the future of the job's ``prepare`` in the worker, or None.
+        pending: the :class:`~tactcad.export.worker.Preparing` process of the job's
+            ``prepare``, or None.
     """
     if pending is None:
         return
     try:
         pending.result()
-    except Exception:  # BrokenProcessPool or the prepare's own error: made again here
+    except Exception:  # the process failed or died: made again here
         pass
 
 

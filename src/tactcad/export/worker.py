@@ -133,11 +133,9 @@ class Worker:
     (on an error or an interrupt). A worker that dies fails its jobs with
     :class:`concurrent.futures.process.BrokenProcessPool`; none is forked again."""
 
-    def __init__(self, run: Run, jobs: Sequence[Job], prepares: Sequence[Job] = (),
-                 kernel: bool = False):
-        """Fork the worker for ``run``'s ``jobs`` (and the ``prepare`` of ``prepares``,
-        :meth:`prepare`); ``kernel``: the run builds solids, so the kernel's modules are
-        imported here first and inherited (:func:`load_before_fork`).
+    def __init__(self, run: Run, jobs: Sequence[Job], kernel: bool = False):
+        """Fork the worker for ``run``'s ``jobs``; ``kernel``: the run builds solids, so the
+        kernel's modules are imported here first and inherited (:func:`load_before_fork`).
 
         Raises:
             OSError: no process to be had (memory, process limit).
@@ -146,8 +144,7 @@ class Worker:
         self._blobs: dict[str, bytes | None] = {}  # part name -> its hand-over (see _hand_over)
         if kernel:
             load_before_fork()  # the worker inherits the kernel's modules (see the module doc)
-        _INHERITED.update(run=run, jobs={j.name: j for j in jobs},
-                          prepares={j.name: j.prepare for j in prepares})
+        _INHERITED.update(run=run, jobs={j.name: j for j in jobs})
         try:
             self._pool = _started_pool(self._context)  # forks now, before any solid is built
         finally:
@@ -163,12 +160,6 @@ class Worker:
         return _JobFuture(self._pool.submit(_run_job, job.name, _hand_over(solids, self._blobs)),
                           lambda line: None)
 
-    def prepare(self, job: Job) -> Future:
-        """Run ``job.prepare`` (one of the ``prepares`` the worker was forked with) there,
-        ahead of the jobs handed over after it, keeping what it works out in the run's
-        store (:func:`_run_prepare`); the future's ``result()`` is None once it is kept."""
-        return self._pool.submit(_run_prepare, job.name)
-
     def close(self) -> None:
         self._pool.shutdown(wait=True)
 
@@ -178,9 +169,10 @@ class Worker:
 
 
 def prepared_there(run: Run) -> bool:
-    """True if a job's ``prepare`` run in the worker serves this process: the run's store
-    has a folder, where the worker keeps the results (:func:`tactcad.store.kept_result`)
-    this process then reads back, warnings and all; a store of no folder keeps nothing
+    """True if a job's ``prepare`` run in another process (:class:`Preparing`) serves this
+    process: the run's store has a folder, where that process keeps the results
+    (:func:`tactcad.store.kept_result`) this process then reads back, warnings and all; a
+    store of no folder keeps nothing
     between processes, so the run's process prepares for itself.
 
     Args:
@@ -193,7 +185,7 @@ def prepared_there(run: Run) -> bool:
 
 
 def _run_prepare(name: str) -> None:
-    """A job's ``prepare`` in the worker (:meth:`Worker.prepare`): its results kept in the
+    """A job's ``prepare`` in the :class:`Preparing` process: its results kept in the
     run's store (:func:`tactcad.export.jobs.keeping_run_results`), where the run's process
     reads them back and issues their warnings there; none is issued here."""
     from tactcad.export.jobs import keeping_run_results
@@ -398,8 +390,26 @@ class _JobFuture:
 
 def _start() -> None:
     """The worker's start: it leaves Ctrl-C to the run's process, ends at once
-    on the other stop signals (:func:`tactcad.stopping.stop_signals_unblocked`)
-    and with the run's process, then imports the kernel and the drawing modules."""
+    on the other stop signals and with the run's process (:func:`_child_start`),
+    lets go of a FreeCAD started ahead by that process
+    (:func:`tactcad.export.freecad_review.forget_ahead_in_child`), then imports the
+    kernel and the drawing modules."""
+    _child_start()
+    if "tactcad.export.freecad_review" in sys.modules:  # else no FreeCAD was started
+        from tactcad.export.freecad_review import forget_ahead_in_child
+
+        forget_ahead_in_child()
+    import importlib
+
+    for module in PRELOAD:
+        importlib.import_module(module)
+
+
+def _child_start() -> None:
+    """A child process's first act: Ctrl-C left to the run's process, the other stop
+    signals end it at once (:func:`tactcad.stopping.stop_signals_unblocked`), and so does
+    the end of the run's process (Linux's PR_SET_PDEATHSIG), so a killed run leaves no
+    process behind."""
     stop_signals_unblocked()
     try:  # Linux: SIGKILL when the parent dies, so a killed run leaves no worker behind
         import ctypes
@@ -409,10 +419,64 @@ def _start() -> None:
             os._exit(1)
     except (OSError, AttributeError):
         pass
-    import importlib
 
-    for module in PRELOAD:
-        importlib.import_module(module)
+
+class Preparing:
+    """The ``prepare`` of a run's jobs (the review page's design facts: kernel-free) in a
+    process of their own, forked before the run's process imports the CAD kernel, so the
+    facts are worked out on the second core while this one loads the kernel (about 1.5 CPU
+    s, with one core otherwise idle) and the drawing worker, forked after that import,
+    starts on its drawings at once. Its results are kept in the run's store (a store with a
+    folder: :func:`prepared_there`), where each job reads them back, warnings and all.
+
+    :meth:`result` waits for the process; :meth:`kill` ends it at once (a failed or
+    interrupted run). A process that fails or dies leaves the work to the jobs, which do it
+    as they would have (the failure is theirs to say)."""
+
+    def __init__(self, run: Run, jobs: Sequence[Job]):
+        """Fork the process for the ``prepare`` of ``jobs``, in their order.
+
+        Raises:
+            OSError: no process to be had (memory, process limit).
+        """
+        self._context = _Started("fork")
+        _INHERITED.update(run=run, prepares={j.name: j.prepare for j in jobs})
+        try:
+            with stop_signals_held():
+                process = self._context.Process(target=_prepare_all,
+                                                args=([j.name for j in jobs],), daemon=True)
+                process.start()
+        except BaseException:
+            _kill(self._context.processes)
+            raise
+        finally:
+            _INHERITED.clear()  # the process has its copy; this one needs none
+        self._process = process
+
+    def result(self) -> None:
+        """Wait for every ``prepare`` to be kept.
+
+        Raises:
+            RuntimeError: the process failed or died (the jobs then work it out themselves).
+        """
+        self._process.join()
+        if self._process.exitcode != 0:
+            raise RuntimeError(f"the jobs' prepare process ended with {self._process.exitcode}")
+
+    def kill(self) -> None:
+        """End the process at once and reap it."""
+        _kill(self._context.processes)
+
+
+def _prepare_all(names: Sequence[str]) -> None:
+    """The :class:`Preparing` process: each named job's ``prepare`` (:func:`_run_prepare`);
+    an error ends it with code 1, silently (the job meets it again and says it)."""
+    _child_start()
+    try:
+        for name in names:
+            _run_prepare(name)
+    except BaseException:
+        sys.exit(1)
 
 
 def _hand_over(solids: Mapping[str, Any], blobs: dict[str, bytes | None]) -> bytes:
