@@ -103,3 +103,18 @@ def test_verify_notes_a_reason_that_no_longer_applies(tmp_path):
     r = run_cli("verify", "--design", str(design), "--model", "closed-form")
     assert f"note: [assumptions] {key}: " in r.stdout, r.stderr
     assert "the reason no longer applies)" in r.stdout
+
+
+def test_a_reason_carried_from_a_base_design_is_written_once_and_stays_stale():
+    from tactcad.studies.inverse_design import with_base_named
+
+    base = with_written_values({"sheet": {"thickness_mm": 1.0},
+                                "material": {"grade": "Ti-6Al-4V-annealed"},
+                                "assumptions": {"sheet.thickness_mm": "one sheet",
+                                                "material.grade": "Ti, E 113800 MPa"}})
+    edited = {**base, "material": {"grade": "CuBe-C17200-TF00"}}  # the lab's edit
+    why = with_base_named(edited, "base.toml")["assumptions"]
+    assert why["sheet.thickness_mm"] == "one sheet"
+    assert why["material.grade"] == ("Ti, E 113800 MPa (written for Ti-6Al-4V-annealed; the "
+                                     "file now states CuBe-C17200-TF00: the reason no longer "
+                                     "applies)")
