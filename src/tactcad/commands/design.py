@@ -76,10 +76,14 @@ def rounded_lengths(value: Any, key: str = "") -> Any:
 
 def design_text(header: str, data: dict) -> str:
     """A design file's text: ``header`` and the tables as TOML, each length rounded to
-    :data:`WRITTEN_MM_PLACES` (:func:`rounded_lengths`) where the file is written."""
+    :data:`WRITTEN_MM_PLACES` (:func:`rounded_lengths`) where the file is written, each
+    reason under ``[assumptions]`` ending with the value it is written for
+    (:func:`tactcad.vocabulary.schema.with_written_values`: a later edit shows it stale)."""
     import tomli_w
 
-    return header + tomli_w.dumps(rounded_lengths(data))
+    from tactcad.vocabulary.schema import with_written_values
+
+    return header + tomli_w.dumps(with_written_values(rounded_lengths(data)))
 
 
 #: How a searched design is checked (``--verify``), without ``--jaw``: ``auto`` climbs the

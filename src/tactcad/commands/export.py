@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
+from pathlib import Path
 
 from tactcad.commands.options import output_folder
 from tactcad.atomic import SYSTEM_RULE
@@ -59,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
     if args.scene and (only or parts):
         raise DesignError("--scene", args.scene, "alone, without --only or --part")
 
+    from tactcad.export.live import unmet_line
     from tactcad.export.run import export, export_scenes
     from tactcad.export.selection import (ReportingParts, partial_record, select_jobs,
                                           with_progress)
@@ -88,11 +91,17 @@ def run(args: argparse.Namespace) -> int:
         result = export(project, args.out, log=lambda s: None, store=store, parts=cache,
                         dxf_version=args.dxf_version, select=select,
                         partial=partial, kinds=only)
+    # the requirements the export's manifest fails, as watch reads them (closed form)
+    unmet = "" if args.scene else unmet_line(Path(result.out_dir))
     if args.json:
         print(json.dumps(result.as_json(), indent=1))
+        if unmet:  # stdout stays one JSON document; the manifest holds the table
+            print(unmet, file=sys.stderr)
         return 0
     for line in result.summary_lines():
         print(line)
     if args.scene:
         print("manifest.json not rewritten (full export only)")
+    if unmet:
+        print(unmet)
     return 0

@@ -45,6 +45,7 @@ def run(args: argparse.Namespace) -> int:
                                                 undecided, verification_auto,
                                                 verification_matrix)
     from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.vocabulary.schema import stale_reasons
     from tactcad.studies.strength_studies import element_stress
 
     plan = plan_from_args(args)
@@ -74,6 +75,8 @@ def run(args: argparse.Namespace) -> int:
         print(matrix_table(records))
         for key, why in req.reasons.items():
             print(f"  {key}: {why}")
+        for key, why in stale_reasons(plan.raw).items():  # edited since design wrote them
+            print(f"note: [assumptions] {key}: {why}")
         for note in dict.fromkeys(r["note"] for r in records if r.get("note")):
             print(f"note: {note}")
         for level in levels:

@@ -38,7 +38,7 @@ from pydantic import create_model
 from tactcad.vocabulary.schema import (LIMIT_TOLERANCE_MM, DateText, Derived, FileName, Name,
                                        Problems, Section, Text, choice, content_hash, copy_tables,
                                        fmt, integer, listing, number, read_assumptions, read_toml,
-                                       validate)
+                                       validate, with_counts)
 from tactcad.vocabulary.material_library import (DENSITY_RANGE, SAFETY_FACTOR_RANGE, STRENGTH_RANGE_MPA,
                                           StrengthSettings, default_strength_settings,
                                           material_fields, material_grade, strength_settings)
@@ -945,6 +945,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[DesignFile
     p = Problems(file)
     data = with_grade_defaults(data)
     model = validate(DesignFile, data, p)
+    with_counts(p, data)  # a per-element list refused: how many values it takes
     read_assumptions(data, DesignFile, p, "element.notch_radius_mm")
     grade_error = _grade_error(data)
     refuse_grade(p, grade_error)

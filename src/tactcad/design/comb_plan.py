@@ -52,7 +52,7 @@ from tactcad.vocabulary.material_library import material_fields, strength_settin
 from tactcad.vocabulary.process import (CUT_PROCESSES, DEFAULT_CUT_PROCESS, ProcessLimits,
                                         check_sheet_process, first_process_holding)
 from tactcad.vocabulary.schema import (Derived, Problems, Section, choice, copy_tables, fmt,
-                                       number, read_assumptions, validate)
+                                       number, read_assumptions, with_counts, validate)
 from tactcad.vocabulary.standards import (DOWEL_PINS, MINIATURE_SCREWS, shortest_dowel_length,
                                           shortest_stock_length)
 
@@ -579,6 +579,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables
     p = Problems(file)
     data = with_grade_defaults(data)
     model = validate(CombFile, data, p)
+    with_counts(p, data)  # a per-element list refused: how many values it takes
     read_assumptions(data, CombFile, p, "comb.post_length_mm")
     grade_error = _grade_error(data)
     refuse_grade(p, grade_error)  # the grade, not the E and nu it would have supplied

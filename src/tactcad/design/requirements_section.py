@@ -52,7 +52,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from tactcad.vocabulary.schema import Problems, Section, Text, fmt, listing, number
+from tactcad.vocabulary.schema import (Problems, Section, Text, fmt, listing, number,
+                                       reason_as_read)
 
 #: Title of the paper the macro array comes from; a design whose
 #: ``requirements.source`` names it is the paper's design.
@@ -191,9 +192,11 @@ def derived_requirements(raw: Mapping[str, Any]) -> dict[str, str]:
     why = raw.get("assumptions") if isinstance(raw, Mapping) else None
     if not isinstance(why, Mapping):
         return {}
-    return {key: why[f"requirements.{key}"] for key in stated
-            if isinstance(why.get(f"requirements.{key}"), str)
-            and why[f"requirements.{key}"].startswith(DERIVED_BY_DESIGN)}
+    read = {key: reason_as_read(f"requirements.{key}", why[f"requirements.{key}"], raw)
+            for key in stated if isinstance(why.get(f"requirements.{key}"), str)}
+    # a value edited since design derived it is the lab's now, not derived
+    return {key: text for key, (text, applies) in read.items()
+            if applies and text.startswith(DERIVED_BY_DESIGN)}
 
 
 def requirements_source(raw: Mapping[str, Any]) -> str | None:

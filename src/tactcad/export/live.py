@@ -175,20 +175,58 @@ def changes(files: Iterable[Path], poll: bool, stop: threading.Event | None = No
             yield
 
 
-def requirements_not_met(out: Path) -> tuple[list[str], int]:
-    """The requirements the export's design fails (verdict ``fail`` at the closed
-    form, :func:`tactcad.export.review_page.unmet_requirements`) and how many its
-    manifest verifies; ``([], 0)`` without a readable manifest."""
+def requirements_record(out: Path) -> dict:
+    """The requirements record of the export in ``out`` (its manifest's closed-form
+    verification, as ``tactcad verify`` reads it); ``{}`` without a readable manifest.
+
+    Args:
+        out: the export's folder.
+
+    Returns:
+        The manifest's ``requirements`` table.
+    """
     import json
 
     try:
         doc = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
     except (OSError, ValueError):
-        return [], 0
-    record = doc.get("requirements") or {}
+        return {}
+    record = doc.get("requirements") if isinstance(doc, dict) else None
+    return record if isinstance(record, dict) else {}
+
+
+def requirements_not_met(out: Path) -> tuple[list[str], int]:
+    """The requirements the export's design fails (verdict ``fail`` at the closed
+    form, :func:`tactcad.export.review_page.unmet_requirements`) and how many its
+    manifest verifies; ``([], 0)`` without a readable manifest."""
+    record = requirements_record(out)
     return unmet_requirements(record), len(record.get("closed_form_matrix") or [])
 
 
 def unmet_words(unmet: list[str], total: int) -> str:
     """``3 of 7 requirements not met: a, b, c``."""
     return f"{len(unmet)} of {total} requirements not met: {', '.join(unmet)}"
+
+
+def unmet_line(out: Path) -> str:
+    """The line ``tactcad export`` ends with when the export's design fails requirements
+    (read from its manifest, as watch's :func:`requirements_not_met`): ``2 of 8
+    requirements not met: kobj_resolution_rel (margin -55.9 %), ...; `tactcad verify` for
+    the table``; empty when every one is met (watch says nothing then either).
+
+    Args:
+        out: the export's folder.
+
+    Returns:
+        The line, or "".
+    """
+    from tactcad.studies.verification import margin_text
+
+    record = requirements_record(out)
+    unmet, total = requirements_not_met(out)
+    if not unmet:
+        return ""
+    rows = {r.get("requirement"): r for r in record.get("closed_form_matrix") or []}
+    named = [f"{name} (margin {margin_text(rows[name])})"
+             for name in unmet]
+    return unmet_words(named, total) + "; `tactcad verify` for the table"

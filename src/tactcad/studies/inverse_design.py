@@ -68,7 +68,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from tactcad.vocabulary.schema import copy_tables
+from tactcad.vocabulary.schema import copy_tables, reason_as_read
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, DEFAULT_DESIGN, MIN_BASE_BELOW_ARM_MM,
                                        MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan,
                                        element_process_limits, plan_from_dict)
@@ -1054,9 +1054,24 @@ def with_base_named(data: Mapping[str, Any], label: str) -> dict[str, Any]:
     named = f"the base design ({label})"
     out["assumptions"] = {
         key: _BASE_VALUE.sub(lambda m: f" instead of {m.group(1)} in {named};",
-                             _BASE_POINTER.sub(f"Kept from {named}", str(why)))
+                             _BASE_POINTER.sub(f"Kept from {named}", as_read(key, why, data)))
         for key, why in dict(data.get("assumptions", {})).items()}
     return out
+
+
+def as_read(key: str, why: Any, data: Mapping[str, Any]) -> str:
+    """A reason carried into a new design as its outputs would show it
+    (:func:`tactcad.vocabulary.schema.reason_as_read`): without the base's record of its
+    value, and saying so where that value is not the new design's (the record is written
+    anew with the file).
+
+    Args:
+        key: the assumption's key. why: its reason. data: the new design's tables.
+
+    Returns:
+        The reason's text.
+    """
+    return reason_as_read(key, why, data)[0] if isinstance(why, str) else str(why)
 
 
 def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, str]:

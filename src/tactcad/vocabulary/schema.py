@@ -623,8 +623,8 @@ def read_assumptions(data: Mapping[str, Any], model: type[BaseModel], problems: 
                          f"keys naming a field of this file, e.g. '{example}'")
         elif not isinstance(reason, str) or not reason.strip():
             problems.add(f"assumptions.{key}", reason, "a one-line reason (non-empty string)")
-        else:
-            out.append((key, reason.strip()))
+        else:  # a reason whose value has since been edited says so
+            out.append((key, reason_as_read(key, reason.strip(), data)[0]))
     return tuple(out)
 
 
@@ -636,3 +636,183 @@ class Derived:
     value: float
     unit: str
     reason: str
+
+
+#: The per-element lists of a design file: rows x columns values each.
+PER_ELEMENT_LISTS = ("arms.lengths_mm", "comb.stop_gaps_mm", "comb.web_thicknesses_mm")
+
+
+def stated_grid(data: Mapping[str, Any]) -> tuple[int, int] | None:
+    """(rows, columns) a design file's ``[array]`` states, or None where either is not a
+    whole number of at least 1.
+
+    Args:
+        data: the design file's tables.
+
+    Returns:
+        The grid, or None.
+    """
+    table = data.get("array") if isinstance(data, Mapping) else None
+    if not isinstance(table, Mapping):
+        return None
+    rows, columns = table.get("rows"), table.get("columns")
+    whole = all(isinstance(v, int) and not isinstance(v, bool) and v >= 1 for v in (rows, columns))
+    return (rows, columns) if whole else None
+
+
+def counted(error: DesignError, grid: tuple[int, int] | None) -> DesignError:
+    """``error`` naming the count of values a per-element list takes (``rows x columns``
+    becomes ``rows x columns: 2 x 5 = 10 values``) where it refuses such a list and the
+    file states its grid; ``error`` itself otherwise.
+
+    Args:
+        error: one refusal. grid: :func:`stated_grid` of the file.
+
+    Returns:
+        The refusal, with the number where it lacked it.
+    """
+    words = "rows x columns"
+    if grid is None or error.field not in PER_ELEMENT_LISTS or words not in error.allowed:
+        return error
+    rows, columns = grid
+    return DesignError(error.field, error.value,
+                       f"{error.allowed}: {rows} x {columns} = {rows * columns} values",
+                       error.why, error.file, error.alternatives, error.limit)
+
+
+def with_counts(problems: Problems, data: Mapping[str, Any]) -> None:
+    """Name the count of values in every refusal of a per-element list in ``problems``
+    (:func:`counted`), in place.
+
+    Args:
+        problems: this pass's refusals. data: the design file's tables.
+    """
+    grid = stated_grid(data)
+    problems.errors = [counted(e, grid) for e in problems.errors]
+
+
+#: How ``tactcad design`` records, at the end of each reason under ``[assumptions]``, the
+#: value the reason was written for (``... by the web rule [written for 0.2]``); a file
+#: without it (written before, or by hand) reads as it always did.
+WRITTEN_FOR = re.compile(r" \[written for (.*)\]\Z", re.DOTALL)
+
+_KEY_PARTS = re.compile(r"^([a-z_]+)\.([A-Za-z0-9_]+)(?:\[(\d+)\])?$")
+
+
+def value_text(value: Any) -> str | None:
+    """A design file's value as a reason's record of it: a text as it is, a number as
+    its shortest form to 12 digits, a list in brackets; None for a table or another type.
+
+    Args:
+        value: the value (TOML's types).
+
+    Returns:
+        The text, or None.
+    """
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (int, float)):
+        return format(value, ".12g")
+    if isinstance(value, (list, tuple)):
+        items = [value_text(v) for v in value]
+        return None if None in items else "[" + ", ".join(items) + "]"
+    return None
+
+
+def keyed_value(data: Mapping[str, Any], key: str) -> Any:
+    """The value an ``[assumptions]`` key names in ``data`` (``section.key`` or
+    ``section.key[i]``, i from 1), or None where the file leaves it out.
+
+    Args:
+        data: the design file's tables. key: the assumption's key.
+
+    Returns:
+        The value, or None.
+    """
+    m = _KEY_PARTS.match(key)
+    table = data.get(m.group(1)) if m and isinstance(data, Mapping) else None
+    value = table.get(m.group(2)) if isinstance(table, Mapping) else None
+    if value is None or m.group(3) is None:
+        return value
+    i = int(m.group(3))  # element order, from 1, as the refusals name them
+    return value[i - 1] if isinstance(value, list) and 1 <= i <= len(value) else None
+
+
+def plain_reason(reason: str) -> tuple[str, str | None]:
+    """(a reason without its record of the value, that record or None where it has none).
+
+    Args:
+        reason: a reason as the file gives it.
+
+    Returns:
+        The reason's words and the value text it was written for.
+    """
+    m = WRITTEN_FOR.search(reason)
+    return (reason, None) if m is None else (reason[:m.start()].rstrip(), m.group(1))
+
+
+def reason_as_read(key: str, reason: str, data: Mapping[str, Any]) -> tuple[str, bool]:
+    """A reason as the outputs show it, and whether it still applies: the reason's own
+    words where the file states the value it was written for (or it records none), else
+    those words and ``(written for 0.2; the file now states 0.25: the reason no longer
+    applies)`` (an edit of the file since ``tactcad design`` wrote it).
+
+    Args:
+        key: the assumption's key. reason: its text in the file. data: the file's tables.
+
+    Returns:
+        (the text shown, True while the reason applies to the file's value).
+    """
+    words, written = plain_reason(reason)
+    if written is None:
+        return words, True
+    now = value_text(keyed_value(data, key))
+    if now == written:
+        return words, True
+    stated = "leaves it out" if now is None else f"states {now}"
+    return (f"{words} (written for {written}; the file now {stated}: the reason no longer "
+            "applies)"), False
+
+
+def with_written_values(data: Mapping[str, Any]) -> dict:
+    """``data`` with each reason under ``[assumptions]`` ending with the value it is
+    written for (:data:`WRITTEN_FOR`), so that a later edit of the value shows the reason
+    as no longer applying (:func:`reason_as_read`); a record already there is replaced.
+
+    Args:
+        data: the tables about to be written.
+
+    Returns:
+        A copy of the tables (the same where there is no ``[assumptions]``).
+    """
+    why = data.get("assumptions")
+    if not isinstance(why, Mapping) or not why:
+        return dict(data)
+    marked = {}
+    for key, reason in why.items():
+        text = value_text(keyed_value(data, key))
+        words = plain_reason(reason)[0] if isinstance(reason, str) else reason
+        marked[key] = words if text is None or not isinstance(words, str) else \
+            f"{words} [written for {text}]"
+    return {**data, "assumptions": marked}
+
+
+def stale_reasons(data: Mapping[str, Any]) -> dict[str, str]:
+    """The reasons under a design file's ``[assumptions]`` that no longer apply: each
+    written by ``tactcad design`` for a value the file has since changed
+    (:func:`reason_as_read`), as the outputs show it.
+
+    Args:
+        data: the design file's tables.
+
+    Returns:
+        Key -> the reason as shown (empty where every one applies).
+    """
+    why = data.get("assumptions") if isinstance(data, Mapping) else None
+    if not isinstance(why, Mapping):
+        return {}
+    read = {key: reason_as_read(key, reason, data) for key, reason in why.items()
+            if isinstance(reason, str)}
+    return {key: text for key, (text, applies) in read.items() if not applies}
