@@ -195,6 +195,8 @@ def _type_words(info: Any) -> str:
             return "one line of text"
         if limits.kind == "name":
             return "a name: 1-64 characters A-Z a-z 0-9 _ . -"
+        if limits.kind == "choice" and _text_choices(info):  # written quoted, as TOML reads
+            return "text, one of " + ", ".join(f'"{c}"' for c in _text_choices(info))
         return limits.unit
     ann = info.annotation
     words = {float: "number", int: "integer", str: "text", bool: "true or false"}
@@ -208,6 +210,24 @@ def _type_words(info: Any) -> str:
     return "a value"
 
 
+def _text_choices(info: Any) -> tuple[str, ...]:
+    """The texts a choice key takes (``typing.Literal`` of str), else ()."""
+    for arg in (info.annotation, *typing.get_args(info.annotation)):
+        if typing.get_origin(arg) is typing.Literal:
+            values = typing.get_args(arg)
+            return values if all(isinstance(v, str) for v in values) else ()
+    return ()
+
+
+def toml_value(value: Any) -> str:
+    """``value`` as a TOML file writes it (a text quoted: ``shaft_class_mm = "10"``)."""
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
 def _default_words(info: Any) -> str:
     if info.is_required():
         return "required"
@@ -216,7 +236,7 @@ def _default_words(info: Any) -> str:
         return "optional"
     if isinstance(default, BaseModel):
         return "its keys' defaults"
-    return code(default) if default not in ({}, []) else "empty"
+    return code(toml_value(default)) if default not in ({}, []) else "empty"
 
 
 def schema_keys(model: type[BaseModel], prefix: str = "") -> Iterator[tuple[str, Any, type | None]]:
@@ -313,6 +333,52 @@ def schema_markdown() -> str:
         if rows:
             out.append(table(header, rows))
     return "\n".join(out)
+
+
+def jaw_file_rows() -> list[list[str]]:
+    """One row per key of a lab's jaw file (``[grasper_jaw]``,
+    :class:`tactcad.partlib.grasper_jaw.GrasperJawSection`): the key, whether the file must
+    state it (:data:`tactcad.partlib.grasper_jaw.JAW_FILE_KEYS`: a key, or one of a pair),
+    its range with its unit, what leaving it out gives, and its reason."""
+    from tactcad.partlib.grasper_jaw import JAW_FILE_KEYS, GrasperJawSection
+    from tactcad.vocabulary.schema import _limits
+
+    required: dict[str, str] = {}
+    for entry in JAW_FILE_KEYS:
+        pair = entry if isinstance(entry, tuple) else (entry,)
+        for key in pair:
+            others = [code(k) for k in pair if k != key]
+            required[key] = ("required" if not others
+                             else "required: this or " + " or ".join(others))
+    rows = []
+    for key, info in GrasperJawSection.model_fields.items():
+        limits = _limits(info)
+        if key in required:
+            left_out = "refused by its name" if required[key] == "required" else \
+                "the other key of the pair"
+        else:
+            left_out = _default_words(info)
+            if left_out == "optional":  # None: the class's, derived, or nothing
+                said = limits.why if limits and limits.why else ""
+                left_out = "as the reason says" if "left out" in said else "none"
+        rows.append([code(key), required.get(key, "optional"), text(_type_words(info)),
+                     left_out, text(limits.why) if limits and limits.why else ""])
+    return rows
+
+
+def jaw_file_markdown() -> str:
+    """A lab's own jaw file (``tactcad design --jaw FILE``, a die's ``die.jaw``): every key
+    of its ``[grasper_jaw]`` table, whether it must be stated, its range and unit."""
+    return ("Generated from the schema the validator reads (`[grasper_jaw]`) and the keys a "
+            "jaw file must state (`tactcad.partlib.grasper_jaw.JAW_FILE_KEYS`). A jaw file "
+            "holds one `[grasper_jaw]` table. A *required* key left out is refused by its "
+            "name (a class's own jaw needs no file: `--jaw 5` or `--jaw 10`); of a pair, "
+            "state one. The trocar class is text, quoted as TOML writes it "
+            "(`shaft_class_mm = \"5\"`); every size is a number in mm, the opening in "
+            "degrees. A value outside its range is refused with the range and the reason "
+            "(exit 2), every error of the file at once.\n\n"
+            + table(["key", "must the file state it", "range", "left out", "reason"],
+                    jaw_file_rows()))
 
 
 # ---------------------------------------------------------------------------
@@ -462,6 +528,7 @@ def processes_markdown() -> str:
 
 #: The generated pages: file name -> the function that writes it.
 PAGES = {"cli.md": cli_markdown, "schema.md": schema_markdown,
+         "jaw_file.md": jaw_file_markdown,
          "export_kinds.md": export_kinds_markdown, "check_groups.md": check_groups_markdown,
          "processes.md": processes_markdown, "constructions.md": constructions_markdown,
          "materials.md": materials_markdown}

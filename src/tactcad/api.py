@@ -1181,25 +1181,64 @@ def _what_if_named(exc: Exception, given: Mapping[str, Any]) -> Exception:
                        exc.file, exc.alternatives, exc.limit)
 
 
-def load_die(path: str | Path, set: Mapping[str, Any] | None = None) -> "DieProject":
+def load_die(path: str | Path | None = None,
+             set: Mapping[str, Any] | None = None) -> "DieProject":
     """A silicon die's design file as a :class:`DieProject`, planned now (the die product's
     ``load`` hook, :mod:`tactcad.products.silicon_die`; :func:`load` calls it for a die's
     file).
 
     Args:
-        path: the die's design file (a ``[die]`` table).
+        path: the die's design file (a ``[die]`` table), or a project folder holding it (as
+            :func:`load` takes one); ``None`` means the one design file of the working
+            folder, which must be a die's (:func:`_die_design_path`: no shipped die stands
+            in, as the array example stands in for :func:`load`).
         set: values to override by dotted key (``{"die.columns": 4}``), checked like the file.
 
     Raises:
-        DesignErrors, DesignError: as ``tactcad die --design`` refuses the file or a value.
+        DesignErrors, DesignError: as ``tactcad die --design`` refuses the file or a value;
+            a folder with no design file or several, or none given where the working folder
+            holds no die's design file (naming ``path``).
     """
-    from tactcad.errors import DesignError
-
-    if not isinstance(path, (str, PathLike)):
-        raise DesignError("path", path, "a die design file's path (str or pathlib.Path)")
-    project = DieProject(Path(path), _checked_overrides(set))
+    project = DieProject(_die_design_path(path), _checked_overrides(set))
     project.plan  # planned now: a refusal at load, as an array's
     return project
+
+
+def _die_design_path(path: str | Path | None) -> Path:
+    """The die design file :func:`load_die` reads for ``path``.
+
+    Args:
+        path: a die's design file, a project folder holding one design file, or None (the
+            working folder's one design file).
+
+    Returns:
+        The design file's path (a folder's one design file; the file as given otherwise,
+        which the die's loader reads and refuses when it holds no ``[die]`` table).
+
+    Raises:
+        DesignError: ``path`` neither a str, a path nor None; a folder with no design file or
+            several; None where the working folder holds no design file, or an array's.
+    """
+    from tactcad.design.array_plan import DEFAULT_DESIGN, read_toml
+    from tactcad.errors import DesignError
+    from tactcad.products.silicon_die.design.die_file import is_die_file
+    from tactcad.project_folder import default_design, design_in_folder
+
+    allowed = "a die design file's path (str or pathlib.Path) or a project folder holding one"
+    if path is not None and not isinstance(path, (str, PathLike)):
+        raise DesignError("path", path, allowed + ", or None (the working folder's)")
+    if path is not None:
+        given = Path(path)
+        return design_in_folder(given, "path") if given.is_dir() else given
+    design = default_design()
+    if design == DEFAULT_DESIGN or not is_die_file(read_toml(design, "path")):
+        why = (f"the working folder's design file {design.name} is an array's: "
+               "tactcad.load() reads it" if design != DEFAULT_DESIGN else
+               "the working folder holds no design file (tactcad.load() then reads the array "
+               "example; no die stands in)")
+        raise DesignError("path", None, allowed + "; left out only in a die's project folder",
+                          why)
+    return design
 
 
 class DieProject:
@@ -1393,10 +1432,20 @@ class DieProject:
     @property
     def design_hash(self) -> str:
         """sha256 of the die's design file, as in its export's manifest (a die asked by
-        options has no file: the manifest's stand-in)."""
+        options has no file: the manifest's stand-in). The jaw file the design names is
+        not in it: it is one of the die's :attr:`inputs`, as an array's rigs.toml is one of
+        its export's."""
         from tactcad.products.silicon_die.export.die_review import design_head
 
         return design_head(self.name, self.planned.source)["design"]["sha256"]
+
+    @property
+    def inputs(self) -> dict:
+        """What the die's export is made from, as its manifest's ``inputs`` records it: the
+        design file and the jaw file it names (none for a trocar class), each
+        ``{"role", "file", "sha256"}``. ``tactcad check`` exports again an export whose
+        record differs (:func:`tactcad.products.silicon_die.export.die_inputs.changed_die_inputs`)."""
+        return self.planned.inputs or {"files": []}
 
     @keyword_errors
     @refuses_array_keywords

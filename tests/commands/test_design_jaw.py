@@ -109,7 +109,7 @@ def design_for_jaw_file(folder, name: str, table: str) -> tuple[dict, dict]:
 def test_a_labs_own_jaw_from_a_file_bounds_the_search_and_goes_into_the_design(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "our_jaw.toml", "pocket_width_mm = 5.0\n"
                                      "pocket_length_mm = 27.0\nopening_angle_deg = 40.0\n")
-    assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.toml"
+    assert d["jaw"]["jaw"] == "10 mm-shaft jaw of our_jaw.toml"
     assert (d["jaw"]["pocket_across_mm"], d["jaw"]["pocket_along_mm"]) == pytest.approx((4.8, 26.8))
     assert d["jaw"]["height_mm"] == round(d["jaw"]["height_mm"], 6)  # no float noise
     assert d["pitch_mm"] * 6 <= 26.8 and all(not c["failed"] for c in d["checks"].values())
@@ -267,7 +267,7 @@ def test_a_jaw_files_paste_is_never_a_jaw_its_shaft_refuses(tmp_path):
 @pytest.mark.slow  # a whole comb search through the command line
 def test_a_jaw_file_of_any_name_is_read_as_toml(tmp_path):
     d, written = design_for_jaw_file(tmp_path, "our_jaw.cfg", "pocket_width_mm = 5.0\n")
-    assert d["jaw"]["jaw"] == "10 mm jaw of our_jaw.cfg"
+    assert d["jaw"]["jaw"] == "10 mm-shaft jaw of our_jaw.cfg"
     assert written["grasper_jaw"]["pocket_width_mm"] == 5.0
 
 

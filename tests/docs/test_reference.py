@@ -127,6 +127,27 @@ def test_every_key_of_the_shipped_files_is_in_the_reference(file):
     assert keys - {"assumptions"} <= documented, sorted(keys - documented)
 
 
+def test_the_jaw_file_table_lists_every_key_and_what_a_jaw_file_must_state():
+    """A lab's jaw file: every ``[grasper_jaw]`` key the validator accepts, each one a jaw
+    file must state marked required (found by leaving it out of a jaw file), the trocar
+    class quoted as TOML takes it, its unit on each size."""
+    from tactcad.partlib.grasper_jaw import GrasperJawSection, missing_jaw_file_keys
+
+    page = REF.jaw_file_markdown()
+    rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `([^`]+)` \| ([^|]+) \|",
+                                                         page, re.M)}
+    assert set(rows) == accepted_keys(DesignFile, ("grasper_jaw",))
+    must = {k for one in missing_jaw_file_keys({}) for k in one.split(" or ")}
+    assert {k for k, said in rows.items() if said.startswith("required")} == must
+    assert {"pin_inset_mm", "opening_angle_deg"} <= must
+    assert 'one of \\"5\\"\\, \\"10\\"' in page  # text: shaft_class_mm = "5"
+    for key in GrasperJawSection.model_fields:
+        line = next(x for x in page.splitlines() if x.startswith(f"| `{key}` |"))
+        assert key in ("material", "shaft_class_mm") or re.search(r"\bmm\b|degrees", line), line
+    schema = REF.schema_markdown()
+    assert '| `grasper_jaw.shaft_class_mm` |' in schema and '`"10"`' in schema
+
+
 # --- registries and the library -----------------------------------------------------------------
 def test_export_kinds_check_groups_and_library_are_listed():
     from tactcad.checks.groups import CHECK_GROUPS

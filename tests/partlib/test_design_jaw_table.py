@@ -80,7 +80,7 @@ def test_a_jaw_files_stated_pocket_is_the_room_less_its_clearances():
     room = jaw_room({**JAW_10, "pocket_width_mm": 5.0, "pocket_length_mm": 20.0,
                      "pocket_clearance_mm": 0.2}, "my_jaw.toml")
     assert (room.across_mm, room.along_mm) == pytest.approx((4.6, 19.6))
-    assert room.label == "10 mm jaw of my_jaw.toml" and room.option == "my_jaw.toml"
+    assert room.label == "10 mm-shaft jaw of my_jaw.toml" and room.option == "my_jaw.toml"
     whole = jaw_room("10")
     assert whole.across_mm > room.across_mm and whole.along_mm > room.along_mm
     assert whole.label == "10 mm jaw" and whole.table == {"shaft_class_mm": "10"}
@@ -118,7 +118,7 @@ def test_a_labs_12_mm_jaw_with_its_7_mm_pocket_is_the_room_it_states():
     room = jaw_room(LAB_JAW, "lab_jaw.toml")
     assert (room.across_mm, room.along_mm) == pytest.approx((6.8, 25.8))
     assert room.height_mm == pytest.approx(3.2 + 0.3)
-    assert room.label == "12 mm jaw of lab_jaw.toml"
+    assert room.label == "12 mm-shaft jaw of lab_jaw.toml"
 
 
 @pytest.mark.parametrize("change, field", [

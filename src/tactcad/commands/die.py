@@ -48,6 +48,23 @@ READ_BACK_CHECKS = {"die_files": "every file of the die there",
                     "die_record": "the record holds the plan the design makes"}
 
 
+def on_the_files(check: str) -> bool:
+    """Whether a die's check result named ``check`` is one of the files themselves
+    (:data:`READ_BACK_CHECKS`, or ``export_inputs``, which ``tactcad check`` adds when the
+    export it checks as it is, files edited by hand, is older than the design or jaw file),
+    not one ``tactcad export`` prints.
+
+    Args:
+        check: the result's check name.
+
+    Returns:
+        True for a check of the files themselves.
+    """
+    from tactcad.checks.export_files import STALE_CHECK
+
+    return check in READ_BACK_CHECKS or check == STALE_CHECK
+
+
 def read_back_words() -> str:
     """The checks :data:`READ_BACK_CHECKS` names, each with what it asks, as one phrase."""
     return ", ".join(f"{k} ({v})" for k, v in READ_BACK_CHECKS.items())
@@ -182,6 +199,7 @@ def die_asked(args: argparse.Namespace) -> dict:
             "kobj_range": tuple(d.die.kobj_range_N_per_mm),
             "full_scale_force": d.die.full_scale_force_N, "columns": d.die.columns,
             "pitch_um": d.die.pitch_um, "name": d.die.name, "file": Path(args.design).name,
+            "design_path": str(args.design),
             "source": _source_of(Path(args.design), overrides),
             "strength": d.strength,
             # a resolution the file leaves out is the default's, reported, not judged
@@ -263,6 +281,10 @@ class PlannedDie:
     jaw_stated: Any
     #: the die design file's name and sha256, or None for a die asked by options
     source: dict | None = None
+    #: what its export is made from, the manifest's ``inputs``: the design file and the
+    #: jaw file, each with its sha256
+    #: (:func:`tactcad.products.silicon_die.export.die_inputs.die_inputs`)
+    inputs: dict | None = None
 
 
 def plan_of(asked: dict) -> PlannedDie:
@@ -273,6 +295,7 @@ def plan_of(asked: dict) -> PlannedDie:
         DesignError: a bad name, jaw or targets the die cannot meet (named).
     """
     from tactcad.commands.design import jaw_of
+    from tactcad.products.silicon_die.export.die_inputs import die_inputs
     from tactcad.products.silicon_die.studies.die_doping import doped_die_plan
     from tactcad.partlib.grasper_jaw import jaw_room
     from tactcad.studies.inverse_design import Targets
@@ -309,7 +332,7 @@ def plan_of(asked: dict) -> PlannedDie:
 
         plan = replace(plan, kobj_accuracy_rel=float(asked["kobj_accuracy"]))
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
-                      asked.get("source"))
+                      asked.get("source"), die_inputs(asked.get("design_path"), jaw_file))
 
 
 def with_weibull(plan, pair):
@@ -467,7 +490,7 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
                           "detail": c.detail} for c in checks], "counts": counts}
     made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
     _write_review_and_manifest(plan, planned.source, made, files, budget, staging,
-                               mount, getattr(args, "design", None), readout)
+                               mount, getattr(args, "design", None), readout, planned.inputs)
     return {"record": record, "checks": checks, "counts": counts, "readout": readout,
             "dies": dies, "modes": modes, "fe": fe, "budget": budget,
             "jobs_run": jobs_run, "jobs_reused": len(jobs) - jobs_run}
@@ -487,9 +510,10 @@ def _mount_checks(run) -> list:
 
 def die_export_key(planned, mount, design_file: str | None) -> str:
     """The store's name for a die's whole export: what every file of it is made from (the
-    plan, its mount in the jaw, the design's source and ``--set`` values, the project's
-    atlas files, the review page's scripts, the file names; the store's own salt adds
-    tactcad's code and the CAD stack).
+    plan, its mount in the jaw, the design's source and ``--set`` values, its input files
+    (the design and jaw files' sha256, the manifest's ``inputs``), the project's atlas
+    files, the review page's scripts, the file names; the store's own salt adds tactcad's
+    code and the CAD stack).
 
     Args:
         planned: the die as planned (:func:`plan_of`). mount: its mount in the jaw.
@@ -503,7 +527,8 @@ def die_export_key(planned, mount, design_file: str | None) -> str:
     from tactcad.store import content_key
 
     return content_key("die-export", planned.plan.as_json(), mount.as_json(),
-                       planned.room.label, planned.source, DIE_FILES, NOT_IN_MANIFEST,
+                       planned.room.label, planned.source, planned.inputs, DIE_FILES,
+                       NOT_IN_MANIFEST,
                        atlas_identity(design_file), assets_identity())
 
 
@@ -542,12 +567,14 @@ def keep_die_export(key: str, staging: Path, kept: dict) -> None:
 
 def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict,
                                budget, staging: Path, mount, design_file: str | None,
-                               readout: dict) -> None:
+                               readout: dict, inputs: dict | None = None) -> None:
     """The die's review page and manifest, from the files made before them in
     ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`); the page shows the
     atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`),
     and, as an array's, the grasp (``tactcad grasp``'s record at its defaults), the tissue
-    coupling and the build book (the die's traveller, ``readout``'s sheet resistance)."""
+    coupling and the build book (the die's traveller, ``readout``'s sheet resistance). The
+    manifest holds ``inputs`` (the design and jaw files with their sha256) right after its
+    ``design`` when given, as an array's (:func:`tactcad.export.run.with_inputs`)."""
     from tactcad.commands.finite_json import finite
     from tactcad.export.atlas_view import atlas_view
     from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
@@ -592,6 +619,10 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
                              # an unbounded figure (a margin, an unreadable K_obj) as null
                              **finite(die_manifest_sections(plan, verification,
                                                             budget.as_json()))})
+    if inputs is not None:  # what a check compares with the files now
+        from tactcad.export.run import with_inputs
+
+        manifest = with_inputs(manifest, inputs)
     made["manifest"].write_text(manifest_text(manifest), encoding="utf-8")
 
 
@@ -825,8 +856,8 @@ def check_die(design: Path, args: argparse.Namespace) -> int:
                                  "status": c.status, "detail": c.detail} for c in checks],
                      "counts": counts,
                      # the export's own checks and those on the files (READ_BACK_CHECKS)
-                     "checks_on_the_files": sum(c.check in READ_BACK_CHECKS for c in checks),
-                     "checks_export_prints": sum(c.check not in READ_BACK_CHECKS
+                     "checks_on_the_files": sum(on_the_files(c.check) for c in checks),
+                     "checks_export_prints": sum(not on_the_files(c.check)
                                                  for c in checks)}, indent=1))
     else:
         shown = [c for c in checks if not (args.failures_only and c.status in ("pass", "info"))]
@@ -848,7 +879,7 @@ def read_back_said(checks) -> str:
         One line, e.g. ``3 of them on the files themselves (die_files, ...); the other 50
         are the checks `tactcad export` prints``.
     """
-    own = [c for c in checks if c.check in READ_BACK_CHECKS]
+    own = [c for c in checks if on_the_files(c.check)]
     names = ", ".join(dict.fromkeys(c.check for c in own))
     return (f"{len(own)} of them on the files themselves ({names}); the other "
             f"{len(checks) - len(own)} are the checks `tactcad export` prints")
@@ -878,7 +909,7 @@ def die_check(design: Path, args: argparse.Namespace,
     import tempfile
 
     from tactcad.checks.check_result import CheckResult, status_counts
-    from tactcad.checks.export_files import edited_results
+    from tactcad.checks.export_files import edited_results, stale_results
     from tactcad.commands.check import say_the_export_left_unread
     from tactcad.products.silicon_die.checks.die_mount_fit import mount_checks
     from tactcad.products.silicon_die.checks.gds_drc import gds_checks
@@ -900,9 +931,12 @@ def die_check(design: Path, args: argparse.Namespace,
         refusal = state.refusal
         say_the_export_left_unread(args, report)
         if refusal is None:  # hand edits are left as they are, each a failing check
+            from tactcad.export.reuse import stale_said
+
             report(f"checking the export in {out} as it is"
                    + (f" ({len(state.edited)} file(s) changed or removed by hand since)"
-                      if state.edited else " (same design, every file as listed)"))
+                      if state.edited else " (same design, every file as listed)")
+                   + (f"; it is {stale_said(state.stale)}" if state.stale else ""))
         else:  # as an array's check does: exported there first, said in one line
             if args.out:  # another design's export is refused as export refuses it
                 refuse_a_foreign_folder(out, name)
@@ -918,7 +952,10 @@ def die_check(design: Path, args: argparse.Namespace,
         checks = die_requirement_checks(plan, mount) + [CheckResult("die_files", str(out), not missing,
                               f"missing: {', '.join(missing)}" if missing
                               else f"{len(files)} files of {name}")]
-        checks += edited_results(out, state.edited)  # the array's rule: one for every product
+        # the array's rule: one for every product (and one when the export checked as it is
+        # is older than its inputs; one exported first is not)
+        checks += edited_results(out, state.edited) + stale_results(
+            out, state.stale if refusal is None else ())
         if not missing:
             same = record.get("die") == json_module.loads(dumps(plan.as_json()))
             checks.append(CheckResult("die_record", files["record"].name, same,
@@ -946,16 +983,21 @@ def die_check(design: Path, args: argparse.Namespace,
 def _die_export_state(out: Path, planned: PlannedDie, record: Path) -> "ExportState":
     """What the die's check finds in ``out``, by the array's rule
     (:func:`tactcad.export.reuse.export_state`: the manifest's design file sha256 and
-    ``--set`` values, versions, every listed file's sha256; files changed by hand in an
-    export of the same design are left as they are and listed); a record of another plan
-    (a jaw file changed since) is exported again, unless the record itself was edited."""
+    ``--set`` values, versions, every listed file's sha256, and its ``inputs``, the design
+    and jaw files, against those files now: an export older than an edit of the jaw file is
+    exported again; files changed by hand in an export of the same design are left as they
+    are and listed, with what it is older than); a record of another plan is exported
+    again, unless the record itself was edited."""
     import json as json_module
 
     from tactcad.export.reuse import ExportState, export_state
+    from tactcad.products.silicon_die.export.die_inputs import changed_die_inputs
 
     source = planned.source or {}
+    now = planned.inputs or {"files": []}
     state = export_state(out, {"sha256": source.get("sha256"),
-                               "overrides": source.get("overrides", {})})
+                               "overrides": source.get("overrides", {})},
+                         lambda recorded: changed_die_inputs(recorded, now))
     if state.refusal is None and record.relative_to(out).as_posix() not in state.edited \
             and (_record_of(record) or {}).get("die") != \
             json_module.loads(dumps(planned.plan.as_json())):

@@ -122,7 +122,8 @@ def stale_said(stale: tuple[str, ...] | list[str]) -> str:
     rigs.toml (changed since it was written)``."""
     if list(stale) == [UNRECORDED_INPUTS]:
         return ("made without a record of its inputs (an earlier tactcad's export): it may be "
-                "older than the project's rigs and scenes files")
+                "older than the project's other files (an array's rigs and scenes files, a "
+                "die's jaw file)")
     if list(stale) == [OTHER_INPUTS]:
         return ("older than its other inputs (changed since it was written: the project's "
                 "atlas files, tactcad's data or the installed CAD tools)")

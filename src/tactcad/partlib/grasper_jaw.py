@@ -659,10 +659,12 @@ class JawRoom:
 
     @property
     def label(self) -> str:
-        """The jaw in words: "10 mm jaw", or "10 mm jaw of my_jaw.toml" for a file's."""
-        own = self.option and self.option not in SHAFT_CLASSES_MM
-        own_file = f" of {PurePath(self.option).name}" if own else ""
-        return f"{self.shaft_class_mm} mm jaw{own_file}"
+        """The jaw in words: a trocar class's "10 mm jaw" (the jaw of a 10 mm instrument,
+        not its width); a file's by the shaft it passes and the file's name, "6.5 mm-shaft
+        jaw of my_jaw.toml" (its width is the file's ``width_mm``)."""
+        if self.option and self.option not in SHAFT_CLASSES_MM:
+            return f"{self.shaft_class_mm} mm-shaft jaw of {PurePath(self.option).name}"
+        return f"{self.shaft_class_mm} mm jaw"
 
 
 def jaw_room(jaw: str | Mapping[str, Any], file: str = "") -> JawRoom:
