@@ -650,6 +650,32 @@ def test_a_sheets_target_free_tables_are_made_once_a_process_for_equal_inputs_bu
     assert made == [1.0, 1.0, 0.8]
 
 
+def test_a_sheets_web_floor_is_read_once_for_all_its_scales(monkeypatch):
+    """Inside one search the thinnest web a sheet's process leaves is worked out once for
+    every K_m scale's web solve (the shared tables never change), and each solve's webs
+    are those of a search that works it out each time."""
+    from tactcad.studies import comb_design
+    from tactcad.studies.comb_design import searched_base, sheet_tables, solved_webs
+
+    targets = Targets(10.0, (0.5, 5.0), 0.05)
+    with comb_design.web_solves_kept():
+        d, _ = sheet_tables(searched_base(BASE, 4), 1.0, 4, jaw_room("10"), targets, TI)
+        fresh = [solved_webs(d, targets, s)[1:] for s in comb_design.KM_SCALES]
+    floors: list[int] = []
+    real = comb_design.web_floor
+
+    def counted(tables):
+        floors.append(1)
+        return real(tables)
+
+    monkeypatch.setattr(comb_design, "web_floor", counted)
+    with comb_design.web_solves_kept():
+        d, _ = sheet_tables(searched_base(BASE, 4), 1.0, 4, jaw_room("10"), targets, TI)
+        kept = [solved_webs(d, targets, s)[1:] for s in comb_design.KM_SCALES]
+    assert kept == fresh and any(webs for webs, _ in kept)
+    assert len(floors) == 1
+
+
 @pytest.mark.parametrize("k_target", [2.0, 5.5, 11.3, 48.0, 300.0])
 def test_a_solved_web_is_the_grid_web_whose_half_step_cell_holds_the_root(k_target):
     """The web search's answer on the 1 um grid: K half a step below it falls short of the

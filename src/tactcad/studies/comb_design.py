@@ -687,7 +687,7 @@ def solved_webs(d: dict, targets: Targets, km_scale: float = 1.0
         if web is None:
             return plan, None, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) "
                                 f"reaches K = {k:.4g} N/mm at the closed form"]
-        thinnest = web_floor(d)
+        thinnest = tables_web_floor(d)
         if web < thinnest.value_mm - 1e-9:
             return plan, None, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), "
                                 f"below the {thinnest.value_mm:g} mm {process_name(d)} holds "
@@ -903,6 +903,27 @@ def web_floor(d: Mapping[str, Any]):
     from tactcad.design.array_plan import element_process_limits
 
     return element_process_limits(d).min_web_mm
+
+
+def tables_web_floor(d: Mapping[str, Any]):
+    """:func:`web_floor` of ``d``; inside :func:`web_solves_kept`, worked out once for the
+    tables :func:`sheet_tables` shares (never changed: known by their identity), which every
+    K_m scale's web solve reads.
+
+    Args:
+        d: a comb's tables.
+
+    Returns:
+        The thinnest web the rows' process leaves (a
+        :class:`~tactcad.vocabulary.process.Figure`, mm).
+    """
+    kept = _KEPT_WEBS.get()
+    if kept is None or kept.get(("shared tables", id(d))) is not d:
+        return web_floor(d)
+    key = ("web floor", id(d))
+    if key not in kept:
+        kept[key] = web_floor(d)
+    return kept[key]
 
 
 def _short(value: Any) -> str:
