@@ -610,6 +610,72 @@ def test_a_sheets_starting_plan_is_planned_once_for_all_its_scales(monkeypatch):
 
 
 
+def test_a_sheets_target_free_tables_are_made_once_a_process_for_equal_inputs_built_anew(
+        monkeypatch):
+    """Searches of other targets on a base and a room built anew with equal contents share
+    one sheet's target-free tables (made once a process, not once a search), each search's
+    tables those :func:`comb_tables` makes for its own targets; another room or sheet is
+    made anew."""
+    from collections import OrderedDict
+
+    from tactcad.studies import comb_design
+    from tactcad.studies.comb_design import comb_tables, searched_base, sheet_tables
+
+    monkeypatch.setattr(comb_design, "_TARGET_FREE_TABLES", OrderedDict())
+    made: list[float] = []
+    real = comb_design.grid_fitted_to_sheet
+
+    def counted(d):
+        made.append(d["sheet"]["thickness_mm"])
+        return real(d)
+
+    monkeypatch.setattr(comb_design, "grid_fitted_to_sheet", counted)
+    asked = [Targets(10.0, (0.5, 5.0), 0.05), Targets(4.0, (0.1, 30.0), 2.0)]
+    got = []
+    for targets in asked:  # each search its own base copy, room and targets
+        with comb_design.web_solves_kept():
+            got.append(sheet_tables(searched_base(BASE, 4), 1.0, 4,
+                                    dataclasses.replace(jaw_room("10")), targets, TI))
+    assert made == [1.0]
+    for targets, (d, binding) in zip(asked, got):
+        monkeypatch.setattr(comb_design, "grid_fitted_to_sheet", real)
+        assert (d, binding) == comb_tables(searched_base(BASE, 4), 1.0, 4, jaw_room("10"),
+                                           targets, TI)
+        assert d["requirements"]["full_scale_force_N"] == targets.full_scale_force_N
+        monkeypatch.setattr(comb_design, "grid_fitted_to_sheet", counted)
+    shorter = dataclasses.replace(jaw_room("10"), along_mm=jaw_room("10").along_mm - 1.0)
+    with comb_design.web_solves_kept():
+        sheet_tables(searched_base(BASE, 4), 1.0, 4, shorter, asked[0], TI)
+        sheet_tables(searched_base(BASE, 4), 0.8, 4, jaw_room("10"), asked[0], TI)
+    assert made == [1.0, 1.0, 0.8]
+
+
+def test_a_sheets_web_floor_is_read_once_for_all_its_scales(monkeypatch):
+    """Inside one search the thinnest web a sheet's process leaves is worked out once for
+    every K_m scale's web solve (the shared tables never change), and each solve's webs
+    are those of a search that works it out each time."""
+    from tactcad.studies import comb_design
+    from tactcad.studies.comb_design import searched_base, sheet_tables, solved_webs
+
+    targets = Targets(10.0, (0.5, 5.0), 0.05)
+    with comb_design.web_solves_kept():
+        d, _ = sheet_tables(searched_base(BASE, 4), 1.0, 4, jaw_room("10"), targets, TI)
+        fresh = [solved_webs(d, targets, s)[1:] for s in comb_design.KM_SCALES]
+    floors: list[int] = []
+    real = comb_design.web_floor
+
+    def counted(tables):
+        floors.append(1)
+        return real(tables)
+
+    monkeypatch.setattr(comb_design, "web_floor", counted)
+    with comb_design.web_solves_kept():
+        d, _ = sheet_tables(searched_base(BASE, 4), 1.0, 4, jaw_room("10"), targets, TI)
+        kept = [solved_webs(d, targets, s)[1:] for s in comb_design.KM_SCALES]
+    assert kept == fresh and any(webs for webs, _ in kept)
+    assert len(floors) == 1
+
+
 @pytest.mark.parametrize("k_target", [2.0, 5.5, 11.3, 48.0, 300.0])
 def test_a_solved_web_is_the_grid_web_whose_half_step_cell_holds_the_root(k_target):
     """The web search's answer on the 1 um grid: K half a step below it falls short of the

@@ -444,7 +444,51 @@ MEASURING_ARM_EXCESS_MM = 0.5
 def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
                 targets: Targets, grade: str | None) -> tuple[dict, list[str]]:
     """The comb's tables for one sheet, before its webs and stops (see the module doc), and
-    the limits already binding (none when it can go on)."""
+    the limits already binding (none when it can go on): :func:`target_free_tables` with
+    the requirements the targets write (:func:`with_target_requirements`).
+
+    Args:
+        base: the tables searched. sheet_mm: the sheet (mm). columns: the comb's columns.
+        room: the jaw's room (mm). targets: the targets (N/mm, N). grade: the material's
+            grade, or None for the base's.
+
+    Returns:
+        (the tables, sharing nothing mutable with ``base``; the limits already binding).
+    """
+    d, binding = target_free_tables(base, sheet_mm, columns, room, grade)
+    return with_target_requirements(d, targets), binding
+
+
+def with_target_requirements(d: dict, targets: Targets) -> dict:
+    """``d`` (:func:`target_free_tables`' tables) with the requirements the search writes
+    from its targets (:data:`TARGET_REQUIREMENTS`: the full-scale force, N; the K_obj
+    range, N/mm; K_r/K_m) before its own: a new top table and a new ``[requirements]``,
+    every other table ``d``'s own (shared, not copied).
+
+    Args:
+        d: the target-free tables. targets: the targets.
+
+    Returns:
+        The tables, their keys in :func:`target_free_tables`' order.
+    """
+    lo, hi = targets.k_obj_range_N_per_mm
+    return {**d, "requirements": {"full_scale_force_N": targets.full_scale_force_N,
+                                  "kobj_range_N_per_mm": [lo, hi],
+                                  "kr_over_km": targets.kr_over_km, **d["requirements"]}}
+
+
+def target_free_tables(base: dict, sheet_mm: float, columns: int, room: Any,
+                       grade: str | None) -> tuple[dict, list[str]]:
+    """:func:`comb_tables` less the requirements its targets write: none of its tables but
+    ``[requirements]``' force, K_obj range and K_r/K_m reads the targets.
+
+    Args:
+        base, sheet_mm, columns, room, grade: as :func:`comb_tables` (mm).
+
+    Returns:
+        (the tables, their ``[requirements]`` the footprint and any asked grasp alone; the
+        limits already binding).
+    """
     d = copy_tables(base)
     e, comb = d["element"], d["comb"]
     if grade is not None:
@@ -471,11 +515,8 @@ def comb_tables(base: dict, sheet_mm: float, columns: int, room: Any,
     # each element's web from here on (the file gives webs one way, not both)
     comb["web_thicknesses_mm"] = [start_web] * n
     comb["stop_gaps_mm"] = [0.05] * n
-    lo, hi = targets.k_obj_range_N_per_mm
     grasp = (base.get("requirements") or {}).get("max_grasp_force_N")  # asked, else none
-    d["requirements"] = {"full_scale_force_N": targets.full_scale_force_N,
-                         "kobj_range_N_per_mm": [lo, hi], "kr_over_km": targets.kr_over_km,
-                         "footprint_mm": [round(room.across_mm, 6), round(room.along_mm, 6)],
+    d["requirements"] = {"footprint_mm": [round(room.across_mm, 6), round(room.along_mm, 6)],
                          **({} if grasp is None else {"max_grasp_force_N": grasp})}
     d.pop("files", None)
     if room.table:  # the jaw's own checks judge every candidate, as they judge the design
@@ -494,7 +535,8 @@ def sheet_tables(base: dict, sheet_mm: float, columns: int, room: Any, targets: 
     """:func:`comb_tables`, which no K_m scale changes: inside :func:`web_solves_kept`, the
     tables of one ``base``, sheet (mm), column count, ``room``, ``targets`` and grade are
     made once and shared by every scale, so they are read, never changed (:func:`with_webs`
-    changes a copy).
+    changes a copy). Their target-free part is kept per process by value
+    (:func:`kept_target_free_tables`): every point of an atlas makes the same few.
 
     Args:
         base, sheet_mm, columns, room, targets, grade: as :func:`comb_tables`.
@@ -510,10 +552,87 @@ def sheet_tables(base: dict, sheet_mm: float, columns: int, room: Any, targets: 
     hit = kept.get(key)
     if hit is not None and hit[0] is base and hit[1] is room and hit[2] is targets:
         return hit[3]
-    made = comb_tables(base, sheet_mm, columns, room, targets, grade)
+    free = kept_target_free_tables(base, sheet_mm, columns, room, grade, kept)
+    if free is None:  # tables no exact key tells apart: made afresh
+        made = comb_tables(base, sheet_mm, columns, room, targets, grade)
+    else:
+        made = (with_target_requirements(free[0], targets), list(free[1]))
+        kept[("target-free key", id(made[0]))] = free[2]
     kept[key] = (base, room, targets, made)
     kept[("shared tables", id(made[0]))] = made[0]  # never changed: starting_plan's by id
     return made
+
+
+#: Most target-free tables :func:`kept_target_free_tables` keeps in a process (least
+#: recently used dropped first): a jaw's atlas makes grades x sheets x column counts.
+TARGET_FREE_TABLES_KEPT = 1024
+_TARGET_FREE_TABLES: "OrderedDict[tuple, tuple[dict, tuple[str, ...], tuple]]" = OrderedDict()
+_TARGET_FREE_TABLES_LOCK = threading.Lock()
+
+
+def kept_target_free_tables(base: dict, sheet_mm: float, columns: int, room: Any,
+                            grade: str | None, kept: dict | None = None
+                            ) -> tuple[dict, tuple[str, ...], tuple] | None:
+    """:func:`target_free_tables`, kept per process by the value of what it reads: the
+    base's tables (:func:`exact_key`), the sheet (mm), the columns, the room's length,
+    width (mm) and ``[grasper_jaw]`` table, and the grade; so tables built anew with equal
+    contents (each point's ``base`` copy, an outline's room narrowed anew) are made once.
+    The tables kept are shared by every caller: read, never changed.
+
+    Args:
+        base, sheet_mm, columns, room, grade: as :func:`target_free_tables`.
+        kept: a search's kept answers (:func:`web_solves_kept`), where the base's key is
+            worked out once per ``base`` object.
+
+    Returns:
+        (the tables, the limits already binding, :func:`exact_key` of the tables: that of
+        :func:`target_free_plan` for them with any targets' requirements); None when a
+        table's keys do not sort (no exact key).
+    """
+    try:
+        key = (base_key(base, kept), exact_key(sheet_mm), exact_key(columns), exact_key(grade),
+               exact_key((room.across_mm, room.along_mm,
+                          None if not room.table else dict(room.table))))
+    except TypeError:
+        return None
+    with _TARGET_FREE_TABLES_LOCK:
+        hit = _TARGET_FREE_TABLES.get(key)
+        if hit is not None:
+            _TARGET_FREE_TABLES.move_to_end(key)
+            return hit
+    d, binding = target_free_tables(base, sheet_mm, columns, room, grade)
+    try:
+        made = (d, tuple(binding), exact_key(d))
+    except TypeError:
+        return None
+    with _TARGET_FREE_TABLES_LOCK:
+        _TARGET_FREE_TABLES[key] = made
+        while len(_TARGET_FREE_TABLES) > TARGET_FREE_TABLES_KEPT:
+            _TARGET_FREE_TABLES.popitem(last=False)
+    return made
+
+
+def base_key(base: dict, kept: dict | None = None) -> tuple:
+    """:func:`exact_key` of the base's tables; inside a search's kept answers, worked out
+    once per ``base`` object (the entry holds it, so no other object takes its id).
+
+    Args:
+        base: the tables searched. kept: the search's kept answers, or None.
+
+    Returns:
+        The key.
+
+    Raises:
+        TypeError: a table whose keys do not sort.
+    """
+    if kept is None:
+        return exact_key(base)
+    hit = kept.get(("base key", id(base)))
+    if hit is not None and hit[0] is base:
+        return hit[1]
+    key = exact_key(base)
+    kept[("base key", id(base))] = (base, key)
+    return key
 
 
 def with_webs_and_stops(d: dict, targets: Targets, km_scale: float = 1.0) -> tuple[dict, list[str]]:
@@ -568,7 +687,7 @@ def solved_webs(d: dict, targets: Targets, km_scale: float = 1.0
         if web is None:
             return plan, None, [f"no web of element {number} ({g.arm_length_mm:g} mm arm) "
                                 f"reaches K = {k:.4g} N/mm at the closed form"]
-        thinnest = web_floor(d)
+        thinnest = tables_web_floor(d)
         if web < thinnest.value_mm - 1e-9:
             return plan, None, [f"web {web:g} mm of element {number} (K = {k:.4g} N/mm), "
                                 f"below the {thinnest.value_mm:g} mm {process_name(d)} holds "
@@ -614,8 +733,10 @@ def starting_plan(d: dict) -> Any:
     if key is not None and key in kept:
         plan, refused = kept[key]
     else:
+        free_key = None if key is None or key[0] == "plan" else \
+            kept.get(("target-free key", id(d)))
         try:
-            plan, refused = target_free_plan(d), None
+            plan, refused = target_free_plan(d, free_key), None
         except DesignErrors as exc:
             plan, refused = None, exc
         if key is not None:
@@ -635,7 +756,7 @@ _TARGET_FREE_PLANS: "OrderedDict[tuple, tuple[Any, DesignErrors | None]]" = Orde
 _TARGET_FREE_PLANS_LOCK = threading.Lock()
 
 
-def target_free_plan(d: dict) -> Any:
+def target_free_plan(d: dict, key: tuple | None = None) -> Any:
     """``plan_from_dict(d)`` for a reader of the plan's elements, material, strength,
     columns and envelope only, not of its requirements, raw tables or hash (a sheet's
     starting plan, a comb's envelope): kept per process by the tables less the
@@ -652,6 +773,9 @@ def target_free_plan(d: dict) -> Any:
 
     Args:
         d: a comb's tables.
+        key: where known, :func:`exact_key` of ``d`` less the requirements the targets
+            write (:func:`kept_target_free_tables`' third value for the tables
+            :func:`with_target_requirements` made of it); None: worked out here.
 
     Returns:
         The plan: where kept, the first such tables' (their requirements and hash).
@@ -663,8 +787,9 @@ def target_free_plan(d: dict) -> Any:
     if not isinstance(req, dict) or not targets_validate(req):
         return plan_from_dict(d)
     try:
-        key = exact_key({**d, "requirements": {k: v for k, v in req.items()
-                                               if k not in TARGET_REQUIREMENTS}})
+        if key is None:
+            key = exact_key({**d, "requirements": {k: v for k, v in req.items()
+                                                   if k not in TARGET_REQUIREMENTS}})
     except TypeError:  # keys that do not sort: not a TOML file's tables
         return plan_from_dict(d)
     with _TARGET_FREE_PLANS_LOCK:
@@ -778,6 +903,27 @@ def web_floor(d: Mapping[str, Any]):
     from tactcad.design.array_plan import element_process_limits
 
     return element_process_limits(d).min_web_mm
+
+
+def tables_web_floor(d: Mapping[str, Any]):
+    """:func:`web_floor` of ``d``; inside :func:`web_solves_kept`, worked out once for the
+    tables :func:`sheet_tables` shares (never changed: known by their identity), which every
+    K_m scale's web solve reads.
+
+    Args:
+        d: a comb's tables.
+
+    Returns:
+        The thinnest web the rows' process leaves (a
+        :class:`~tactcad.vocabulary.process.Figure`, mm).
+    """
+    kept = _KEPT_WEBS.get()
+    if kept is None or kept.get(("shared tables", id(d))) is not d:
+        return web_floor(d)
+    key = ("web floor", id(d))
+    if key not in kept:
+        kept[key] = web_floor(d)
+    return kept[key]
 
 
 def _short(value: Any) -> str:
