@@ -13,7 +13,8 @@ import tactcad
 from conftest import warm_store_copy, with_default_companions
 from tactcad import cli
 from tactcad.errors import DesignError
-from tactcad.export.manifest_diff import NEW_RGB, OLD_RGB, compare, overlay, side_by_side
+from tactcad.export.manifest_diff import (DIFF_RECORD, NEW_RGB, OLD_RGB, compare, overlay,
+                                          side_by_side)
 
 DEFAULT = tactcad.load().source
 ARM_CHANGED = {"arms.lengths_mm": [4.0, 7.0, 6.0, 8.0, 6.5, 8.0, 5.0, 4.0, 5.0, 7.0]}
@@ -84,9 +85,9 @@ def test_one_arm_changed_names_that_element_its_k_its_sheets_and_the_assembly(
     assert sheets["drawings/element_a6p5mm.svg"]["status"] == "added"
     assert sheets["drawings/element_a6p5mm.svg"]["compared_with"] == "drawings/element_a6mm.svg"
     assert sheets["drawings/assembly.svg"]["status"] == "changed"
-    assert sorted(p.name for p in pictures.iterdir()) == sorted(
+    assert sorted(p.name for p in pictures.iterdir()) == sorted([DIFF_RECORD, *(
         f"{stem}_{kind}.png" for stem in ("element_a6p5mm", "element_a6mm", "assembly")
-        for kind in ("overlay", "side_by_side"))
+        for kind in ("overlay", "side_by_side"))])  # and the record of the pictures
     image = np.asarray(Image.open(pictures / "element_a6p5mm_overlay.png").convert("RGB"))
     for rgb in (OLD_RGB, NEW_RGB, (0, 0, 0)):  # the old, the new and the unchanged lines
         assert (image == np.array(rgb, dtype=image.dtype)).all(axis=-1).any(), rgb

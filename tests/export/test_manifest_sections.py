@@ -18,7 +18,7 @@ TI = str(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml")
 #: The Ti example's sections: no maximum grasp force stated, so no grasp section (a
 #: section with nothing to say is left out).
 KEYS = ["parts", "assemblies", "strength", "requirements", "thermal", "kobj_budget",
-        "tissue_coupling", "derived", "assumptions"]
+        "tissue_coupling", "derived", "assumptions", "stated"]
 
 
 def front_matter(plan) -> str:

@@ -17,20 +17,24 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "limits included; a silicon die's rows, named with their role), the "
                     "closed-form verification's requirements whose prediction, margin or "
                     "verdict changed (the rated full-scale force's among them), derived "
-                    "dimensions, a die's values its "
-                    "file states (listed as stated), "
-                    "and drawing sheets; with --out, an overlay (old red, new blue) and a "
-                    "side-by-side PNG of every changed sheet (unchanged sheets are not rendered). "
+                    "dimensions, the values the design file states (by dotted key, listed as "
+                    "stated), the BOM's items added, removed and whose quantity changed, "
+                    "and drawing sheets; elements are paired by row and column; with --out, "
+                    "an overlay (old red, new blue) and a "
+                    "side-by-side PNG of every changed sheet (unchanged sheets are not rendered), "
+                    "listed in the folder's diff.json: a later diff into the folder replaces "
+                    "them, and a folder holding files no diff wrote is refused. "
                     "A design file (.toml) is exported to a temporary folder first, through the "
                     "store of finished jobs. Exit 0: nothing changed; 1: something changed; "
                     "2: bad input.")
     p.add_argument("old", metavar="OLD", help="export folder (with manifest.json) or design file")
     p.add_argument("new", metavar="NEW", help="export folder (with manifest.json) or design file")
     p.add_argument("--out", metavar="DIR", type=output_folder, default=None,
-                   help="write the changed sheets' overlay and side-by-side PNG here")
+                   help="write the changed sheets' overlay and side-by-side PNG here "
+                        "(an earlier diff's pictures there are replaced)")
     add_cache_args(p)
     add_output_args(p, "print one JSON object: parts, elements, rows (a die's), requirements, "
-                       "derived, stated (a die's), sheets, files")
+                       "derived, stated, sheets, bom, files")
     p.set_defaults(func=run)
 
 
@@ -39,7 +43,8 @@ def run(args: argparse.Namespace) -> int:
 
     from tactcad.commands.check import store_choice
     from tactcad.commands.finite_json import dumps
-    from tactcad.export.manifest_diff import compare, render_sheets
+    from tactcad.export.manifest_diff import (clear_earlier_diff, compare, earlier_diff_files,
+                                              render_sheets, write_diff_record)
 
     report = progress_from_args(args)
     inputs = [_input(args.old, "OLD"), _input(args.new, "NEW")]
@@ -58,6 +63,8 @@ def run(args: argparse.Namespace) -> int:
         reason = unmakeable_folder(args.out)
         if reason is not None:  # said before the exports it compares are made
             raise DesignError("--out", args.out, "a folder that can be made", reason)
+    if args.out is not None:
+        earlier_diff_files(args.out)  # a folder with the lab's files: refused before exporting
     with tempfile.TemporaryDirectory() as tmp:
         folders = []
         for (kind, path), label in zip(inputs, ("old", "new")):
@@ -73,7 +80,9 @@ def run(args: argparse.Namespace) -> int:
         diff = compare(*folders)
         diff.old, diff.new = args.old, args.new
         if args.out is not None:
+            clear_earlier_diff(args.out)  # the folder holds this comparison's files only
             written = render_sheets(diff, folders[0], folders[1], args.out)
+            write_diff_record(diff, written, args.out)
             report(f"wrote {len(written)} pictures to {args.out}")
     if args.json:
         print(dumps(diff.as_json(), indent=1))

@@ -1,9 +1,10 @@
 """``manifest.json``: every file of an export with its sha256, the design's
 hash, the versions of tactcad and its CAD stack, and one section per
 registered source: the parts, the array assembly, the strength of every
-element, the design's requirements, the thermal drift, the derived values
-and assumptions, and each export kind's own section (the DXF kind's ``shop``:
-every cut part's process, its rules with their sources, tabs and cut order).
+element (with its row and column), the design's requirements, the thermal drift, the
+derived values and assumptions, the values the design file states (``stated``), and
+each export kind's own section (the DXF kind's ``shop``: every cut part's process, its
+rules with their sources, tabs and cut order).
 
 The sections are a registry (:data:`MANIFEST_SECTIONS`, as the export kinds
 and check groups are): each names the function that makes it, imported only
@@ -19,7 +20,7 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, Mapping
 
 from tactcad.version import VERSION
 from tactcad.design.array_plan import Plan
@@ -158,7 +159,8 @@ def strength_section(plan: Plan) -> list[dict]:
     """Every element's strength at the rated full-scale force (:func:`_strength_record`)."""
     from tactcad.studies.reference_loads import strength_summary
 
-    return [_strength_record(r) for r in strength_summary(plan)]
+    return [_strength_record(r, plan.element(r["element"]))
+            for r in strength_summary(plan)]
 
 
 def requirements_section(plan: Plan) -> dict:
@@ -251,19 +253,86 @@ def assumptions_section(plan: Plan) -> list[dict]:
     return [{"field": k, "reason": v} for k, v in plan.assumptions]
 
 
-def _strength_record(r: dict) -> dict:
-    """An element's arm, stiffness K, yield-limited force, its fatigue limits (the material's
-    at the notch, ``fatigue_force_N``, None without a fatigue strength, and the gauge's,
-    ``gauge_fatigue_force_N``; N, as ``strength --json`` names them), and its safety
-    factor, gauge strain and tip deflection at the design's rated full-scale
-    force (``full_scale_force_N``, the same for every element) for the
-    manifest (closed form)."""
+def _strength_record(r: dict, slot=None) -> dict:
+    """An element's place in the array (``row`` and ``column``, 1-based, from its ``slot``;
+    the diff pairs elements by them), its arm, stiffness K, yield-limited force, its
+    fatigue limits (the material's at the notch, ``fatigue_force_N``, None without a fatigue
+    strength, and the gauge's, ``gauge_fatigue_force_N``; N, as ``strength --json`` names
+    them), and its safety factor, gauge strain and tip deflection at the design's rated
+    full-scale force (``full_scale_force_N``, the same for every element) for the manifest
+    (closed form).
+
+    Args:
+        r: the element's strength summary record.
+        slot: its :class:`~tactcad.design.array_plan.ElementSlot` (None: no place recorded).
+
+    Returns:
+        the manifest's record of the element.
+    """
     keys = ("element", "part_name", "arm_length_mm", "model", "stiffness_N_per_mm",
             "stress_MPa_per_N", "full_scale_force_N", "yield_limited_force_N",
             "fatigue_force_N", "gauge_fatigue_force_N",
             "yield_safety_factor_at_full_scale", "gauge_strain_at_full_scale",
             "tip_deflection_mm_at_full_scale", "warnings")
-    return {k: r[k] for k in keys}
+    record = {k: r[k] for k in keys}
+    if slot is None:
+        return record
+    return {"element": record["element"], "row": slot.row + 1, "column": slot.column + 1,
+            **record}
+
+
+#: The design file's tables the ``stated`` section leaves out: the reasons for the values
+#: (``[assumptions]``, kept in their own section) and where the companion files lie.
+UNSTATED_TABLES = ("assumptions", "files")
+
+
+def stated_section(plan: Plan) -> dict[str, Any]:
+    """The values the design file states, by dotted key (``comb.web_thicknesses_mm``), as
+    the plan read them (a material grade's E and nu where the file leaves them out), so
+    ``tactcad diff`` names the design values that were edited, as a die's ``[die]`` keys.
+
+    Args:
+        plan: the validated design (its ``raw`` tables).
+
+    Returns:
+        {dotted key: value}: numbers, texts and lists as in the file (units as the key's
+        name says: mm, N, MPa, N/mm ...), tables flattened, other values as text;
+        :data:`UNSTATED_TABLES` left out.
+    """
+    return flat_tables({k: v for k, v in plan.raw.items() if k not in UNSTATED_TABLES})
+
+
+def flat_tables(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """``table``'s values by dotted key, nested tables flattened, each value JSON's own
+    (a TOML date or time as its ISO text).
+
+    Args:
+        table: design tables, as a TOML file reads.
+        prefix: the dotted key of ``table`` itself, with its dot ("" at the top).
+
+    Returns:
+        {dotted key: value}, in the tables' order.
+    """
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            out.update(flat_tables(value, name + "."))
+        else:
+            out[name] = _json_value(value)
+    return out
+
+
+def _json_value(value: Any) -> Any:
+    """``value`` as JSON holds it: numbers, texts, booleans and lists of them as they are,
+    tables as tables, anything else (a TOML date) as text."""
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    if isinstance(value, (list, tuple)):
+        return [_json_value(v) for v in value]
+    if isinstance(value, Mapping):
+        return {str(k): _json_value(v) for k, v in value.items()}
+    return value.isoformat() if hasattr(value, "isoformat") else str(value)
 
 
 def left_out_section(plan: Plan) -> list[dict[str, str]] | None:
@@ -295,5 +364,6 @@ for _key, _function in (("parts", "parts_section"), ("assemblies", "assemblies_s
                         ("grasp", "grasp_section"),
                         ("derived", "derived_section"),
                         ("assumptions", "assumptions_section"),
-                        ("left_out", "left_out_section")):
+                        ("left_out", "left_out_section"),
+                        ("stated", "stated_section")):
     register_section(ManifestSection(_key, f"{__name__}:{_function}"))

@@ -4,14 +4,21 @@
 
 * parts added, removed and changed (quantity, process, material, volume,
   bounding box, or the bytes of the part's STEP file);
-* elements whose part, arm, stiffness K or strength changed, before and after; a silicon
+* elements whose part, arm, stiffness K or strength changed, before and after, paired by
+  their row and column where both manifests record them (an element's number follows from
+  the columns: a column removed is "row R column C removed", not every later element
+  renumbered into its neighbour's place), by their number otherwise; a silicon
   die's rows (its manifest's "rows": row 1 reference, row 2 measuring) likewise, each named
   by its number and role and with its own rated force;
 * the closed-form verification (the manifest's ``requirements.closed_form_matrix``): each
   requirement whose target, prediction, error, margin, verdict or binding limit changed,
   the rated full-scale force's binding element force limit, margin and verdict among them;
 * derived dimensions whose value changed; a product's values its design file states (a
-  silicon die's ``[die]`` keys, :data:`PRODUCT_STATED_KEYS`) listed apart, as stated;
+  silicon die's ``[die]`` keys, :data:`PRODUCT_STATED_KEYS`) listed apart, as stated; a
+  metal design's stated values (its manifest's ``stated``: every key its design file
+  states, by dotted key, ``comb.web_thicknesses_mm``) likewise;
+* the bill of materials (each export's ``bom.csv``): items added, removed and whose
+  quantity changed;
 * drawing sheets added, removed and changed; a new sheet that replaces the
   old sheet of the same element (the element's part was renamed when its arm
   changed) is compared with that sheet;
@@ -121,6 +128,10 @@ def _check_records(man: dict, folder: str | Path) -> None:
                 raise DesignError(f"{MANIFEST}: {section}[{k}]", r,
                                   f"a record with \"{key}\" ({_TYPE_WORDS[kind]})",
                                   f"in {folder}: not a manifest tactcad wrote")
+    if not isinstance(man.get("stated", {}), dict):
+        raise DesignError(f"{MANIFEST}: stated", man["stated"],
+                          "a table of the design file's values by dotted key",
+                          f"in {folder}: not a manifest tactcad wrote")
     parts = man.get("parts", {})
     if not isinstance(parts, dict) or not all(isinstance(v, dict) for v in parts.values()):
         raise DesignError(f"{MANIFEST}: parts", parts, "a table of part records by name",
@@ -155,6 +166,7 @@ class Diff:
     derived: list = field(default_factory=list)
     stated: list = field(default_factory=list)  # a product's values its design file states
     sheets: list = field(default_factory=list)
+    bom: dict = field(default_factory=dict)  # added, removed, changed (bom.csv's items)
     files: dict = field(default_factory=dict)  # changed, added, removed (paths)
 
     @property
@@ -162,14 +174,14 @@ class Diff:
         """True when anything differs, the bytes of any file included."""
         return bool(any(self.parts.values()) or self.elements or self.rows or self.requirements
                     or self.derived
-                    or self.stated or self.sheets
+                    or self.stated or self.sheets or any(self.bom.values())
                     or any(self.files.values()))
 
     def as_json(self) -> dict:
         return {"old": self.old, "new": self.new, "changed": self.changed, "parts": self.parts,
                 "elements": self.elements, "rows": self.rows,
                 "requirements": self.requirements, "derived": self.derived,
-                "stated": self.stated, "sheets": self.sheets,
+                "stated": self.stated, "sheets": self.sheets, "bom": self.bom,
                 "files": self.files}
 
     def lines(self) -> list[str]:
@@ -182,7 +194,7 @@ class Diff:
         for name, ch in self.parts.get("changed", {}).items():
             out.append(f"part changed  {name}: " + _fields_text(ch))
         for e in self.elements:
-            out.append(f"element {e['element']:<4} " + _fields_text(e["changes"]))
+            out.append(element_line(e))
         for r in self.rows:
             out.append(f"{row_words(r)}  " + _fields_text(r["changes"], ROW_FIELDS))
         for r in self.requirements:
@@ -199,6 +211,7 @@ class Diff:
                 if s.get(key):
                     text += f"  {key.replace('_', '-')}: {s[key]}"
             out.append(text)
+        out += bom_lines(self.bom)
         f = self.files
         if any(f.values()):
             out.append(f"files         {len(f['changed'])} changed, {len(f['added'])} added, "
@@ -210,7 +223,47 @@ class Diff:
 def _value(v: Any) -> str:
     if isinstance(v, float):
         return f"{v:.6g}"
+    if isinstance(v, list):
+        return compact_list(v)
     return "-" if v is None else str(v)
+
+
+def compact_list(values: list) -> str:
+    """A list with each run of equal values once and its count:
+    ``[0.164 x6, 0.08 x6]`` for six 0.164 then six 0.08."""
+    runs: list[list] = []
+    for v in values:
+        if runs and _same(runs[-1][0], v):
+            runs[-1][1] += 1
+        else:
+            runs.append([v, 1])
+    return "[" + ", ".join(_value(v) + (f" x{n}" if n > 1 else "") for v, n in runs) + "]"
+
+
+def element_line(record: Mapping[str, Any]) -> str:
+    """An element's finding as text: ``row 1 column 6 removed (element 6)`` for an element
+    only one export has, else ``element 6 (row 2 column 1)  element 7 -> 6, ...`` (the
+    place where the manifests record it)."""
+    changes = dict(record["changes"])
+    place = (f"row {record['row']} column {record['column']}"
+             if record.get("row") is not None and record.get("column") is not None else "")
+    present = changes.get("present")
+    if place and present:
+        return f"{place} {'added' if present['after'] else 'removed'} " \
+               f"(element {record['element']})"
+    if place:
+        return f"element {record['element']} ({place})  " + _fields_text(changes)
+    return f"element {record['element']:<4} " + _fields_text(changes)
+
+
+def bom_lines(bom: Mapping[str, Any]) -> list[str]:
+    """The bill of materials' findings as text, one item a line."""
+    out = [f"bom added     {r['item']} x{_value(r['quantity'])}" for r in bom.get("added", [])]
+    out += [f"bom removed   {r['item']} x{_value(r['quantity'])}"
+            for r in bom.get("removed", [])]
+    out += [f"bom quantity  {r['item']}: {_value(r['before'])} -> {_value(r['after'])}"
+            for r in bom.get("changed", [])]
+    return out
 
 
 def row_words(record: Mapping[str, Any]) -> str:
@@ -284,10 +337,82 @@ def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
     diff.rows = _rows(old, new)
     diff.requirements = _requirements(old, new)
     changed = _derived(old, new)
-    diff.stated = [d for d in changed if _is_stated(d["name"])]
+    diff.stated = _stated(old, new) + [d for d in changed if _is_stated(d["name"])]
     diff.derived = [d for d in changed if not _is_stated(d["name"])]
     diff.sheets = _sheets(old, new, old_files, new_files)
+    diff.bom = _bom(read_bom(old_dir, old_files), read_bom(new_dir, new_files))
     return diff
+
+
+def _stated(old: dict, new: dict) -> list[dict]:
+    """The design file's stated values (the manifest's ``stated``: dotted key -> value) that
+    differ: ``{"name", "before", "after", "unit"}``, in the newer manifest's order (a key
+    only one file states: None on the other side); none when either manifest records none."""
+    a, b = old.get("stated"), new.get("stated")
+    if not isinstance(a, Mapping) or not isinstance(b, Mapping):
+        return []
+    return [{"name": k, "before": a.get(k), "after": b.get(k), "unit": _unit_of(k)}
+            for k in list(b) + [k for k in a if k not in b] if not _same(a.get(k), b.get(k))]
+
+
+#: The bill of materials an export writes, and its columns naming an item and its quantity
+#: (an array's ``part``/``quantity``; a die's ``item``/``qty``).
+BOM_FILE = "bom.csv"
+BOM_ITEM_COLUMNS = ("part", "item")
+BOM_QUANTITY_COLUMNS = ("quantity", "qty")
+
+
+def read_bom(folder: str | Path, files: Mapping[str, dict]) -> dict[str, Any] | None:
+    """The export's bill of materials as {item: quantity} (pcs, or the row's unit), each
+    item's rows summed; None when its manifest lists no ``bom.csv`` or it cannot be read.
+
+    Raises:
+        DesignError: a ``bom.csv`` path leading out of the export.
+    """
+    import csv
+
+    if BOM_FILE not in files:
+        return None
+    try:
+        text = _inside(folder, BOM_FILE).read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError):
+        return None
+    rows = list(csv.DictReader(text.splitlines()))
+    if not rows:
+        return {}
+    item = next((c for c in BOM_ITEM_COLUMNS if c in rows[0]), None)
+    qty = next((c for c in BOM_QUANTITY_COLUMNS if c in rows[0]), None)
+    if item is None or qty is None:
+        return None
+    out: dict[str, Any] = {}
+    for r in rows:
+        n = _number(r.get(qty))
+        was = out.get(r[item])
+        out[r[item]] = n if was is None else (
+            was + n if isinstance(was, (int, float)) and isinstance(n, (int, float)) else n)
+    return out
+
+
+def _number(text: Any) -> Any:
+    """A quantity's text as an int or float; the text itself when it is neither."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except (TypeError, ValueError):
+            pass
+    return text
+
+
+def _bom(old: Mapping[str, Any] | None, new: Mapping[str, Any] | None) -> dict:
+    """The bill of materials' items added, removed and whose quantity changed:
+    ``{"added": [{"item", "quantity"}], "removed": [...], "changed": [{"item", "before",
+    "after"}]}`` in the newer BOM's order; empty when either export has no BOM."""
+    if old is None or new is None:
+        return {}
+    return {"added": [{"item": k, "quantity": v} for k, v in new.items() if k not in old],
+            "removed": [{"item": k, "quantity": v} for k, v in old.items() if k not in new],
+            "changed": [{"item": k, "before": old[k], "after": v} for k, v in new.items()
+                        if k in old and not _same(old[k], v)]}
 
 
 def _step_sha(files: Mapping[str, dict], part: str) -> str | None:
@@ -357,16 +482,43 @@ def _derived_records(man: dict) -> list[dict]:
     return records
 
 
-def _elements(old: dict, new: dict) -> list[dict]:
+def _place(record: Mapping[str, Any]) -> tuple[int, int] | None:
+    """(row, column) of an element record (1-based); None when it records neither."""
+    r, c = record.get("row"), record.get("column")
+    ok = all(isinstance(v, int) and not isinstance(v, bool) for v in (r, c))
+    return (r, c) if ok else None
+
+
+def element_pairs(old: dict, new: dict) -> list[tuple[dict | None, dict | None]]:
+    """The two exports' element records paired: by (row, column) when every record of both
+    records its place, else by element number; (old, None) for an element only the older
+    export has, (None, new) for one only the newer has; in the order of their places."""
     a, b = _by_element(old), _by_element(new)
+    placed = a and b and all(_place(r) for r in [*a.values(), *b.values()])
+    if placed:
+        a = {_place(r): r for r in a.values()}
+        b = {_place(r): r for r in b.values()}
+    return [(a.get(k), b.get(k)) for k in sorted(a.keys() | b.keys())]
+
+
+def _elements(old: dict, new: dict) -> list[dict]:
+    """The elements whose :data:`ELEMENT_FIELDS` (or number, where they are paired by their
+    place) differ: ``{"element", "changes"}`` (the newer export's number, the older's for an
+    element it lacks), with ``row`` and ``column`` where both manifests record them."""
     out = []
-    for n in sorted(a.keys() | b.keys()):
-        if n not in a or n not in b:
-            out.append({"element": n, "changes": {"present": {"before": n in a, "after": n in b}}})
+    for ra, rb in element_pairs(old, new):
+        rec = rb or ra
+        head = {"element": rec["element"]}
+        if all(_place(r) for r in (ra, rb) if r is not None):  # both record it
+            head.update(row=_place(rec)[0], column=_place(rec)[1])
+        if ra is None or rb is None:
+            out.append({**head, "changes": {"present": {"before": ra is not None,
+                                                        "after": rb is not None}}})
             continue
-        ch = _changes(a[n], b[n], ELEMENT_FIELDS)
+        ch = _changes(ra, rb, ("element",) if ra["element"] != rb["element"] else ())
+        ch.update(_changes(ra, rb, ELEMENT_FIELDS))
         if ch:
-            out.append({"element": n, "changes": ch})
+            out.append({**head, "changes": ch})
     return out
 
 
@@ -411,12 +563,12 @@ def _sheets(old: dict, new: dict, old_files, new_files) -> list[dict]:
     a = {p: f for p, f in old_files.items() if f.get("kind") in SHEET_KINDS}
     b = {p: f for p, f in new_files.items() if f.get("kind") in SHEET_KINDS}
     # a part renamed by its element's change: its new sheet replaces the old one
-    old_parts = {r["element"]: r.get("part_name") for r in old.get("strength", [])}
     renamed = {}
-    for r in new.get("strength", []):
-        was = old_parts.get(r["element"])
-        if was and was != r.get("part_name"):
-            renamed.setdefault(f"drawings/{r['part_name']}.svg", f"drawings/{was}.svg")
+    for ra, rb in element_pairs({"strength": old.get("strength", [])},
+                                {"strength": new.get("strength", [])}):
+        was = ra.get("part_name") if ra else None
+        if rb and was and was != rb.get("part_name"):
+            renamed.setdefault(f"drawings/{rb['part_name']}.svg", f"drawings/{was}.svg")
     out = []
     for path in sorted(a.keys() | b.keys(), key=lambda p: (p == "drawings/assembly.svg", p)):
         if path in a and path in b:
@@ -461,6 +613,87 @@ def render_sheets(diff: Diff, old_dir: str | Path, new_dir: str | Path, out_dir:
             s[key] = str(target)
             written.append(target)
     return written
+
+
+#: The record a diff's ``--out`` folder holds of the pictures that diff wrote there: how a
+#: later diff into the folder knows which files are an earlier comparison's (replaced) and
+#: which are the lab's (never deleted).
+DIFF_RECORD = "diff.json"
+#: What the record says wrote it.
+DIFF_WRITER = "tactcad diff"
+
+
+def earlier_diff_files(out_dir: str | Path) -> set[str]:
+    """The files in ``out_dir`` an earlier diff wrote (its :data:`DIFF_RECORD` and the
+    pictures it lists), names relative to the folder; empty for a new or empty folder.
+
+    Raises:
+        DesignError: ``out_dir`` holds anything else (files no diff recorded, a folder, or a
+            record no diff wrote): a diff's pictures would be mixed with them.
+    """
+    out = Path(out_dir)
+    present = {p.name for p in out.iterdir()} if out.is_dir() else set()
+    if not present:
+        return set()
+    listed = _recorded(out / DIFF_RECORD)
+    ours = {DIFF_RECORD} | listed if listed is not None else set()
+    foreign = sorted(n for n in present if n not in ours or not (out / n).is_file())
+    if foreign:
+        raise DesignError("--out", str(out), "a new or empty folder, or one holding an "
+                          f"earlier diff's pictures (listed in its {DIFF_RECORD}, replaced)",
+                          f"{out} holds files no diff wrote ({', '.join(foreign[:5])}"
+                          f"{' ...' if len(foreign) > 5 else ''}): this comparison's pictures "
+                          "would be mixed with them; name another folder")
+    return ours & present
+
+
+def _recorded(record: Path) -> set[str] | None:
+    """The picture names a diff record lists; None when ``record`` is not one a diff wrote
+    (missing, unreadable, another writer's, or naming a path outside its folder)."""
+    try:
+        data = json.loads(record.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("written_by") != DIFF_WRITER:
+        return None
+    files = data.get("files")
+    if not isinstance(files, list) or not all(
+            isinstance(f, str) and f == Path(f).name and f not in ("", ".", "..", DIFF_RECORD)
+            for f in files):
+        return None
+    return set(files)
+
+
+def clear_earlier_diff(out_dir: str | Path) -> list[str]:
+    """Delete the files an earlier diff wrote in ``out_dir`` (:func:`earlier_diff_files`),
+    so the folder holds only the coming comparison's; returns their names.
+
+    Raises:
+        DesignError: the folder holds files no diff wrote (nothing is deleted then).
+        OSError: a file cannot be deleted.
+    """
+    out = Path(out_dir)
+    names = sorted(earlier_diff_files(out), key=lambda n: n == DIFF_RECORD)  # record last
+    for name in names:
+        (out / name).unlink(missing_ok=True)
+    return names
+
+
+def write_diff_record(diff: Diff, written: list[Path], out_dir: str | Path) -> Path | None:
+    """Write :data:`DIFF_RECORD` into ``out_dir``: the comparison (``old``, ``new``) and the
+    pictures it wrote there (``files``, names); none when it wrote no picture.
+
+    Raises:
+        OSError: the record cannot be written.
+    """
+    from tactcad.atomic import write_bytes_atomic
+
+    if not written:
+        return None
+    record = {"written_by": DIFF_WRITER, "old": diff.old, "new": diff.new,
+              "files": sorted(Path(p).name for p in written)}
+    return write_bytes_atomic(Path(out_dir) / DIFF_RECORD,
+                              (json.dumps(record, indent=1) + "\n").encode("utf-8"))
 
 
 def _inside(folder: str | Path, rel: str) -> Path:
