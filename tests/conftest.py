@@ -400,6 +400,23 @@ def stacked_7075_designed(tmp_path_factory) -> tuple[Path, str]:
     return designed_once(tmp_path_factory, "stacked-7075-design", STACKED_7075_DESIGN)
 
 
+#: ``tactcad design --json`` of a quick stacked array (the shipped base design, a stiff
+#: range) held to ``--kobj-accuracy 0.5``, written outside its working folder: to
+#: ``../stacked-kobj-accuracy.toml``, beside that folder.
+STACKED_KOBJ_ACCURACY_DESIGN = ("design", "--kr-over-km", "3", "--kobj-range", "5", "20",
+                                "--full-scale-force", "0.3", "--kobj-accuracy", "0.5",
+                                "--out", "../stacked-kobj-accuracy.toml", "--json")
+
+
+@pytest.fixture
+def stacked_kobj_accuracy_designed(tmp_path_factory) -> tuple[Path, Path, str]:
+    """(working folder, the design file written outside it, the JSON ``design`` printed) of
+    :data:`STACKED_KOBJ_ACCURACY_DESIGN`, searched once a test run (:func:`designed_once`)."""
+    folder, said = designed_once(tmp_path_factory, "stacked-kobj-accuracy-design",
+                                 STACKED_KOBJ_ACCURACY_DESIGN)
+    return folder, folder.parent / "stacked-kobj-accuracy.toml", said
+
+
 #: The tests that drive a browser (Chromium, headless) or the FreeCAD GUI: under
 #: pytest-xdist they share one process (``--dist loadgroup``), so two never run at
 #: once; the other tests of their files go to any worker.

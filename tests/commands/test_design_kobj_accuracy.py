@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_cli
+from conftest import STACKED_KOBJ_ACCURACY_DESIGN, run_cli
 
 ROOT = Path(__file__).resolve().parents[2]
 TI = ROOT / "hardware" / "ti_array_2x3" / "ti_array_2x3.toml"
@@ -52,18 +52,23 @@ def test_the_reports_words_on_a_failed_accuracy_carry_numbers():
     assert f"{row['predicted']:.3g}" in words
 
 
-def test_the_design_judges_the_accuracy_verify_reads_on_its_written_file(tmp_path):
+def test_the_design_judges_the_accuracy_verify_reads_on_its_written_file(
+        stacked_kobj_accuracy_designed):
     """The design's own verification of --kobj-accuracy reads the calibration of the rigs its
     written project gets, so its figure is the one `verify` gives on the file."""
     from tactcad.api import load
     from tactcad.studies.verification import (element_figures, kobj_accuracy_record,
                                               requirements_of)
 
-    r = run_cli(*STACKED, "--kobj-accuracy", "0.5", "--out", "a.toml", "--json", cwd=tmp_path)
-    assert r.returncode == 0, r.stdout + r.stderr
-    designed = next(q for q in json.loads(r.stdout)["verify"]["requirements"]
+    # conftest's STACKED_KOBJ_ACCURACY_DESIGN: these targets with --kobj-accuracy 0.5,
+    # searched once a run (exit 0 asserted there)
+    _, written_file, said = stacked_kobj_accuracy_designed
+    assert STACKED_KOBJ_ACCURACY_DESIGN[:len(STACKED)] == STACKED
+    assert STACKED_KOBJ_ACCURACY_DESIGN[len(STACKED):len(STACKED) + 2] == ("--kobj-accuracy",
+                                                                           "0.5")
+    designed = next(q for q in json.loads(said)["verify"]["requirements"]
                     if q["requirement"] == "kobj_accuracy_rel")
-    plan = load(str(tmp_path / "a.toml")).plan
+    plan = load(str(written_file)).plan
     fig = element_figures(plan)
     written = kobj_accuracy_record(plan, fig, requirements_of(plan, fig))
     assert designed["predicted"] == written["predicted"]

@@ -21,6 +21,7 @@ from tactcad.studies.inverse_design import (KEEP_WEB_ROOM, InverseDesignError, T
 from tactcad.mechanics.ladder import estimate
 from tactcad.mechanics.lumped_model import deflection_ratio
 from tactcad.mechanics.element_strength import strength_summary
+from conftest import STACKED_KOBJ_ACCURACY_DESIGN
 
 FEASIBLE = Targets(3.0, (5.0, 20.0), 0.3)
 
@@ -237,14 +238,14 @@ def test_cli_refuses_an_existing_project_folder_before_any_search(tmp_path, monk
     assert "--out = " in err and "allowed a folder without the project's files, or --force" in err
 
 
-def test_cli_writes_outside_the_working_folder(tmp_path, monkeypatch, capsys):
-    work = tmp_path / "work"
-    work.mkdir()
-    monkeypatch.chdir(work)
-    assert main(["design", "--kr-over-km", "3", "--kobj-range", "5", "20",
-                 "--full-scale-force", "0.3", "--verify", "none", "--out", "../outside.toml",
-                 "--quiet"]) == 0
-    assert (tmp_path / "outside.toml").is_file()
+def test_cli_writes_outside_the_working_folder(stacked_kobj_accuracy_designed):
+    # conftest's STACKED_KOBJ_ACCURACY_DESIGN, searched once a run (exit 0 asserted there):
+    # run in its working folder with --out ../stacked-kobj-accuracy.toml
+    work, outside, _ = stacked_kobj_accuracy_designed
+    assert "../stacked-kobj-accuracy.toml" in STACKED_KOBJ_ACCURACY_DESIGN
+    assert outside == work.parent / "stacked-kobj-accuracy.toml"
+    assert outside.is_file()
+    assert not (work / "stacked-kobj-accuracy.toml").exists()
 
 
 @pytest.mark.slow  # two whole design searches through the command line

@@ -221,6 +221,9 @@ def test_every_iso_bolt_gets_the_dimensions_it_needs_under_the_tallest_arm(bolt)
     assert plan.element(1).geometry.base_height_mm >= 5.0 + plan.bolt.clearance_hole_mm + 2.0
 
 
+# a whole design search through the command line; the layout's tables it writes are
+# test_a_layouts_sheet_thinner_than_the_default_grid_gets_a_grid_that_fits's (fast)
+@pytest.mark.slow
 def test_a_searched_sheet_thinner_than_the_default_grid_gets_a_grid_that_fits(tmp_path, capsys):
     """Photochemical etching's sheets are thinner than the library default's gauge grid: the
     search writes a grid as wide as its sheet, with the gauge to bond as its reason, so the
@@ -239,6 +242,30 @@ def test_a_searched_sheet_thinner_than_the_default_grid_gets_a_grid_that_fits(tm
     assert written["readout"]["grid_width_mm"] <= sheet
     assert "bond a gauge" in written["assumptions"]["readout.grid_width_mm"]
     assert load_design(out).sheet_thickness_mm == sheet  # the rule passes it
+
+
+def test_a_layouts_sheet_thinner_than_the_default_grid_gets_a_grid_that_fits():
+    """The tables the search judges and writes for a layout (:func:`with_layout`) on a
+    photochemical-etching sheet thinner than the library default's grid, at both ends of
+    the sheets that take a fitted grid (the narrowest grid allowed up to the default's
+    width): a grid as wide as the sheet, the gauge to bond as its reason, and the grid rule
+    passes them (the search wrote the default's 1 mm grid on a 0.4 mm sheet)."""
+    from tactcad.design.array_plan import plan_from_dict
+    from tactcad.design.readout_section import DEFAULTS, GRID_WIDTH_RANGE_MM
+    from tactcad.studies.layout_search import FreeLayout, process_sheets_mm, with_layout
+
+    data = start_tables(load_design().raw, "x", grade="7075-T6", columns=2)
+    data["element"]["process"] = "photochemical-etching"
+    fitted = [s for s in process_sheets_mm("photochemical-etching")
+              if GRID_WIDTH_RANGE_MM[0] <= s < DEFAULTS["grid_width_mm"][0]]
+    start = layout_of(data)
+    for sheet in (fitted[0], fitted[-1]):
+        tables = with_layout(data, FreeLayout(sheet, start.pitch_mm, start.tip_width_mm,
+                                              start.bolt))
+        assert tables["readout"]["grid_width_mm"] == sheet
+        assert "bond a gauge" in tables["assumptions"]["readout.grid_width_mm"]
+        plan = plan_from_dict(tables)  # the grid rule passes it
+        assert plan.sheet_thickness_mm == sheet
 
 
 @pytest.mark.parametrize("whole, estimate", [(0.08159, 0.07), (0.0, 0.08158)])

@@ -7,6 +7,8 @@ import pytest
 
 from tactcad.vocabulary import force_gauge_catalogue as cat
 
+from conftest import EXAMPLE_DESIGN as EXAMPLE
+
 
 def test_every_gauge_names_its_document_and_reads_below_its_range():
     gauges = cat.force_gauges()
@@ -26,6 +28,28 @@ def test_a_bad_entry_is_refused_naming_model_and_field():
         cat._gauge("X", {"maker": "m", "range_N": 1})
 
 
+def test_a_new_projects_rigs_quote_the_catalogues_gauge_not_the_papers_measurement():
+    """The rigs file a new project gets (:func:`tactcad.project_folder.companion_texts`, what
+    ``design --out DIR`` and ``new`` write) for a design whose samples need the Sauter FH 5
+    (0.3 N over 2 ... 20 N/mm: a 3 N sample force) quotes the catalogue's gauge, not the
+    paper's measured FH 5 (57.04 N/mm, the macro array's calibration)."""
+    from tactcad.api import load
+    from tactcad.mechanics.calibration import K_SENSOR_N_PER_MM
+    from tactcad.project_folder import companion_texts
+
+    for g in cat.force_gauges():
+        assert g.stiffness_N_per_mm != K_SENSOR_N_PER_MM
+        assert "macro" not in g.source.lower() and "paper" not in g.source.lower()
+    plan = load(str(EXAMPLE), set={"requirements.kobj_range_N_per_mm": [2.0, 20.0],
+                                   "requirements.full_scale_force_N": 0.3}).plan
+    rigs = companion_texts(plan)["rigs"]
+    assert 'model = "Sauter FH 5"' in rigs
+    assert "57.04" not in rigs and "macro" not in rigs.lower() and "to be measured" in rigs
+
+
+# a whole design search through the command line; the rigs it writes are
+# test_a_new_projects_rigs_quote_the_catalogues_gauge_not_the_papers_measurement's (fast)
+@pytest.mark.slow
 def test_a_new_designs_gauge_stiffness_is_the_catalogues_not_the_papers_measurement(
         tmp_path, monkeypatch):
     # a designed project's rigs quoted "57.04 N/mm as measured ... (the macro array's
