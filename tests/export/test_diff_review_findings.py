@@ -80,10 +80,25 @@ def test_a_removed_column_is_named_by_its_row_and_column_not_by_renumbered_eleme
     assert [(e["row"], e["column"], e["changes"]) for e in others] == [
         (2, c, {"element": {"before": 6 + c, "after": 5 + c}}) for c in range(1, 6)]
     lines = d.lines()
-    assert "row 1 column 6 removed (element 6)" in lines
-    assert "row 2 column 6 removed (element 12)" in lines
-    assert "element 6 (row 2 column 1)  element 7 -> 6" in lines
-    assert not any("part_name" in line for line in lines)
+    # the removed column first, then the numbering it moved: one line a row
+    assert lines[:3] == ["row 1 column 6 removed (element 6)",
+                         "row 2 column 6 removed (element 12)",
+                         "row 2: elements 7-11 renumbered 6-10"]
+    assert not any("part_name" in line or "-> 6" in line for line in lines)
+
+
+def test_renumbered_elements_are_grouped_in_runs_and_a_changed_one_keeps_its_line(tmp_path):
+    # rows 2 and 3 numbered one lower; element 8 -> 7 (row 2 column 3) also stiffer
+    new = _records(3, 4, {0: 1.0, 1: 2.0, 2: 3.0})
+    old = [dict(r, element=r["element"] + (r["row"] > 1)) for r in new]
+    new[6]["stiffness_N_per_mm"] = 2.5
+    d = compare(write_export(tmp_path / "old", {"strength": old}),
+                write_export(tmp_path / "new", {"strength": new}))
+    assert d.lines()[:3] == [
+        "element 7 (row 2 column 3)  element 8 -> 7, stiffness_N_per_mm 2 -> 2.5 N/mm",
+        "row 2: elements 6-7 renumbered 5-6, element 9 renumbered 8",
+        "row 3: elements 10-13 renumbered 9-12"]
+    assert len(d.elements) == 8  # the record keeps every element's own finding
 
 
 def test_the_manifest_records_each_elements_row_and_column():

@@ -12,9 +12,9 @@ import math
 import os
 import shutil
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args,
                               progress_from_args)
@@ -208,7 +208,9 @@ def die_asked(args: argparse.Namespace) -> dict:
             "attach": d.attach,
             "max_grasp_force": d.die.max_grasp_force_N,
             "kobj_accuracy": d.die.kobj_accuracy_rel,
-            "root_fillet_um": d.die.root_fillet_um}
+            "root_fillet_um": d.die.root_fillet_um,
+            # the file's reasons as shown, and those a hand edit left stale
+            "assumptions": d.assumptions, "stale_reasons": dict(d.stale)}
 
 
 def _any_option_given(args: argparse.Namespace) -> bool:
@@ -285,6 +287,11 @@ class PlannedDie:
     #: jaw file, each with its sha256
     #: (:func:`tactcad.products.silicon_die.export.die_inputs.die_inputs`)
     inputs: dict | None = None
+    #: the design file's ``[assumptions]`` as shown, (key, text) pairs
+    #: (:func:`tactcad.products.silicon_die.design.die_file.die_assumptions`)
+    assumptions: tuple = ()
+    #: those of them that no longer apply (a value edited since), key -> text
+    stale_reasons: Mapping[str, str] = field(default_factory=dict)
 
 
 def plan_of(asked: dict) -> PlannedDie:
@@ -332,7 +339,9 @@ def plan_of(asked: dict) -> PlannedDie:
 
         plan = replace(plan, kobj_accuracy_rel=float(asked["kobj_accuracy"]))
     return PlannedDie(plan, room, {"shaft_class_mm": jaw} if isinstance(jaw, str) else jaw,
-                      asked.get("source"), die_inputs(asked.get("design_path"), jaw_file))
+                      asked.get("source"), die_inputs(asked.get("design_path"), jaw_file),
+                      tuple(asked.get("assumptions") or ()),
+                      dict(asked.get("stale_reasons") or {}))
 
 
 def with_weibull(plan, pair):
@@ -425,7 +434,7 @@ def run(args: argparse.Namespace) -> int:
                     indent=1))
     else:  # `--quiet` says nothing on stderr; the summary is the same, as an array's
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
-                     modes, fe, budget, mount, record["fem3d"]))
+                     modes, fe, budget, mount, record["fem3d"], planned.stale_reasons))
     return 1 if counts["failed"] else 0
 
 
@@ -490,7 +499,8 @@ def _build_die_export(args: argparse.Namespace, planned, mount, files: dict, mad
                           "detail": c.detail} for c in checks], "counts": counts}
     made["record"].write_text(dumps(record, indent=1) + "\n", encoding="utf-8")
     _write_review_and_manifest(plan, planned.source, made, files, budget, staging,
-                               mount, getattr(args, "design", None), readout, planned.inputs)
+                               mount, getattr(args, "design", None), readout, planned.inputs,
+                               planned.assumptions)
     return {"record": record, "checks": checks, "counts": counts, "readout": readout,
             "dies": dies, "modes": modes, "fe": fe, "budget": budget,
             "jobs_run": jobs_run, "jobs_reused": len(jobs) - jobs_run}
@@ -527,7 +537,8 @@ def die_export_key(planned, mount, design_file: str | None) -> str:
     from tactcad.store import content_key
 
     return content_key("die-export", planned.plan.as_json(), mount.as_json(),
-                       planned.room.label, planned.source, planned.inputs, DIE_FILES,
+                       planned.room.label, planned.source, planned.inputs,
+                       [list(pair) for pair in planned.assumptions], DIE_FILES,
                        NOT_IN_MANIFEST,
                        atlas_identity(design_file), assets_identity())
 
@@ -567,14 +578,17 @@ def keep_die_export(key: str, staging: Path, kept: dict) -> None:
 
 def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dict,
                                budget, staging: Path, mount, design_file: str | None,
-                               readout: dict, inputs: dict | None = None) -> None:
+                               readout: dict, inputs: dict | None = None,
+                               assumptions: tuple = ()) -> None:
     """The die's review page and manifest, from the files made before them in
     ``staging`` (:mod:`tactcad.products.silicon_die.export.die_review`); the page shows the
     atlas of the jaw when the design's folder has one (:mod:`tactcad.export.atlas_view`),
     and, as an array's, the grasp (``tactcad grasp``'s record at its defaults), the tissue
     coupling and the build book (the die's traveller, ``readout``'s sheet resistance). The
     manifest holds ``inputs`` (the design and jaw files with their sha256) right after its
-    ``design`` when given, as an array's (:func:`tactcad.export.run.with_inputs`)."""
+    ``design`` when given, as an array's (:func:`tactcad.export.run.with_inputs`), and, as
+    an array's, the design file's reasons (``assumptions``: (key, text) pairs, a reason a
+    hand edit left stale marked so) in its ``assumptions`` section, which the page carries."""
     from tactcad.commands.finite_json import finite
     from tactcad.export.atlas_view import atlas_view
     from tactcad.products.silicon_die.studies.die_reports import (stiffness_report,
@@ -592,7 +606,9 @@ def _write_review_and_manifest(plan, source: dict | None, made: dict, files: dic
     from tactcad.products.silicon_die.studies.die_verification import (
         die_tissue_coupling_record)
 
-    head = design_head(plan.name, source)
+    from tactcad.products.silicon_die.export.die_review import assumptions_section
+
+    head = {**design_head(plan.name, source), **assumptions_section(assumptions)}
     from tactcad.errors import DesignError
 
     try:
@@ -654,8 +670,10 @@ def die_requirement_checks(plan, mount=None) -> list:
 
 def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts: str,
            modes: dict | None = None, fe: list | None = None, budget=None, mount=None,
-           fem3d: list | None = None) -> str:
-    """The die, its beams, their read-out, resonances and FE check, and the checks as text."""
+           fem3d: list | None = None, stale: Mapping[str, str] | None = None) -> str:
+    """The die, its beams, their read-out, resonances and FE check, and the checks as text;
+    after the plan's reasons, a note for each reason of the design file that no longer
+    applies (``stale``: key -> text, :func:`stale_notes`)."""
     d = plan
     ref, meas = d.beams[0], d.beams[d.columns]
     rows = readout["rows"]
@@ -696,6 +714,7 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
     if budget is not None:
         lines += ["", *budget_lines(budget)]
     lines += ["", "reasons:"] + [f"  {k}: {v}" for k, v in d.reasons.items()]
+    lines += stale_notes(stale or {})
     if mount is not None:
         lines += ["", f"in the {jaw}:"] + [f"  {k}: {v}" for k, v in mount.reasons.items()]
     lines += ["", f"wrote {', '.join(str(p) for p in files.values())} ({dies} dies on the "
@@ -704,6 +723,20 @@ def render(plan, readout: dict, jaw: str, dies: int, files: dict, checks, counts
               f"files and {len(READ_BACK_CHECKS)} of the files themselves: "
               f"{read_back_words()}"]
     return "\n".join(lines)
+
+
+def stale_notes(stale: Mapping[str, str]) -> list[str]:
+    """A line for each reason of a die file that no longer applies, worded as ``verify``
+    words an array's (``note: [assumptions] KEY: TEXT``).
+
+    Args:
+        stale: key -> the reason as shown
+            (:func:`tactcad.vocabulary.schema.stale_reasons`).
+
+    Returns:
+        The lines (none where every reason applies).
+    """
+    return [f"note: [assumptions] {key}: {why}" for key, why in stale.items()]
 
 
 def resistor_line(plan, readout: dict) -> str:

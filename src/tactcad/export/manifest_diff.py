@@ -7,7 +7,8 @@
 * elements whose part, arm, stiffness K or strength changed, before and after, paired by
   their row and column where both manifests record them (an element's number follows from
   the columns: a column removed is "row R column C removed", not every later element
-  renumbered into its neighbour's place), by their number otherwise; a silicon
+  renumbered into its neighbour's place; those only renumbered are one line a row,
+  ``row 2: elements 7-11 renumbered 6-10``), by their number otherwise; a silicon
   die's rows (its manifest's "rows": row 1 reference, row 2 measuring) likewise, each named
   by its number and role and with its own rated force;
 * the closed-form verification (the manifest's ``requirements.closed_form_matrix``): each
@@ -193,8 +194,7 @@ class Diff:
             out.append(f"part removed  {name}")
         for name, ch in self.parts.get("changed", {}).items():
             out.append(f"part changed  {name}: " + _fields_text(ch))
-        for e in self.elements:
-            out.append(element_line(e))
+        out += element_lines(self.elements)
         for r in self.rows:
             out.append(f"{row_words(r)}  " + _fields_text(r["changes"], ROW_FIELDS))
         for r in self.requirements:
@@ -242,8 +242,9 @@ def compact_list(values: list) -> str:
 
 def element_line(record: Mapping[str, Any]) -> str:
     """An element's finding as text: ``row 1 column 6 removed (element 6)`` for an element
-    only one export has, else ``element 6 (row 2 column 1)  element 7 -> 6, ...`` (the
-    place where the manifests record it)."""
+    only one export has, else ``element 6 (row 2 column 1)  element 7 -> 6, K ...`` (the
+    place where the manifests record it); :func:`element_lines` groups those only
+    renumbered by row."""
     changes = dict(record["changes"])
     place = (f"row {record['row']} column {record['column']}"
              if record.get("row") is not None and record.get("column") is not None else "")
@@ -254,6 +255,71 @@ def element_line(record: Mapping[str, Any]) -> str:
     if place:
         return f"element {record['element']} ({place})  " + _fields_text(changes)
     return f"element {record['element']:<4} " + _fields_text(changes)
+
+
+def only_renumbered(record: Mapping[str, Any]) -> bool:
+    """Whether an element's finding is its number alone, at a place both manifests record
+    (a column removed or added before it in the numbering).
+
+    Args:
+        record: one of :attr:`Diff.elements`.
+
+    Returns:
+        True for a renumbered element whose part, arm, K and strength are as they were.
+    """
+    return (record.get("row") is not None and record.get("column") is not None
+            and list(record["changes"]) == ["element"])
+
+
+def number_runs(pairs: list[tuple[int, int]]) -> list[tuple[int, int, int, int]]:
+    """(old, new) element numbers in runs of consecutive numbers moved by the same step:
+    ``[(7, 6), (8, 7), (9, 8)]`` -> ``[(7, 9, 6, 8)]``.
+
+    Args:
+        pairs: (number before, number after), in the order of their places.
+
+    Returns:
+        (first before, last before, first after, last after) for each run.
+    """
+    runs: list[list[int]] = []
+    for old, new in pairs:
+        last = runs[-1] if runs else None
+        if last and old == last[1] + 1 and new == last[3] + 1:
+            last[1], last[3] = old, new
+        else:
+            runs.append([old, old, new, new])
+    return [tuple(r) for r in runs]
+
+
+def run_words(first: int, last: int, first_after: int, last_after: int) -> str:
+    """A run of renumbered elements: ``elements 7-11 renumbered 6-10`` (``element 7
+    renumbered 6`` for one)."""
+    if first == last:
+        return f"element {first} renumbered {first_after}"
+    return f"elements {first}-{last} renumbered {first_after}-{last_after}"
+
+
+def element_lines(elements: list[Mapping[str, Any]]) -> list[str]:
+    """The elements' findings as text: each element added, removed or changed a line
+    (:func:`element_line`) first, then one line a row for the elements only renumbered
+    (``row 2: elements 7-11 renumbered 6-10``), so that a removed column is read before
+    the numbering it moves.
+
+    Args:
+        elements: :attr:`Diff.elements`, in the order of their places.
+
+    Returns:
+        The lines.
+    """
+    out = [element_line(e) for e in elements if not only_renumbered(e)]
+    rows: dict[int, list[tuple[int, int]]] = {}
+    for e in elements:
+        if only_renumbered(e):
+            ch = e["changes"]["element"]
+            rows.setdefault(e["row"], []).append((ch["before"], ch["after"]))
+    for row, pairs in rows.items():
+        out.append(f"row {row}: " + ", ".join(run_words(*r) for r in number_runs(pairs)))
+    return out
 
 
 def bom_lines(bom: Mapping[str, Any]) -> list[str]:

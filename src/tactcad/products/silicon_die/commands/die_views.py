@@ -278,7 +278,7 @@ def crosstalk_lines(plan, r, in_force: dict, reused: bool = False) -> list[str]:
 
 
 def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
-    from tactcad.commands.die import budget_lines
+    from tactcad.commands.die import budget_lines, stale_notes
     from tactcad.products.silicon_die.in_use.die_budget import die_budget
     from tactcad.studies.verification import matrix_passed, matrix_table, undecided
 
@@ -293,7 +293,8 @@ def _verify(design: Path, args: argparse.Namespace) -> tuple[dict, list[str]]:
               "matrix": records, "undecided": undecided(records), "passed": ok,
               "kobj_budget": budget.as_json()}
     lines = [f"die {plan.name}, model closed-form", matrix_table(records),
-             *budget_lines(budget), "no requirement fails" if ok else "a requirement is not met"]
+             *budget_lines(budget), *stale_notes(planned.stale_reasons),  # edited since
+             "no requirement fails" if ok else "a requirement is not met"]
     return report, lines
 
 

@@ -11,7 +11,7 @@ Units: N/mm, N, um.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -30,8 +30,8 @@ from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRA
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
 from tactcad.errors import DesignError
 from tactcad.vocabulary.schema import (Problems, Section, Text, described_text, integer,
-                                       listing, number,
-                                       read_toml, validate)
+                                       listing, number, reason_as_read, read_toml,
+                                       stale_reasons, validate, with_written_values)
 
 #: The die's largest failure probability a ``[strength]`` table accepts when it states none
 #: (assumption: one die in a thousand).
@@ -135,6 +135,10 @@ class DieDesign:
         attach: the file's die attach, or None (the mount's assumption).
         stated: the ``[die]`` keys the file (with its overrides) states; a key left out
             takes its default.
+        assumptions: the file's reasons under ``[assumptions]`` as the outputs show them,
+            (key, text) in the file's order (:func:`die_assumptions`).
+        stale: the reasons among them that no longer apply, key -> text (a value edited
+            since ``tactcad design`` wrote them; :func:`tactcad.vocabulary.schema.stale_reasons`).
     """
 
     die: DieSection
@@ -143,6 +147,28 @@ class DieDesign:
     strength: WeibullPair | None = None
     attach: DieAttach | None = None
     stated: frozenset = frozenset()
+    assumptions: tuple = ()
+    stale: Mapping[str, str] = field(default_factory=dict)
+
+
+def die_assumptions(data: Mapping[str, Any]) -> tuple[tuple[str, str], ...]:
+    """A die file's reasons under ``[assumptions]`` as the outputs show them: each as the
+    file words it, and where ``tactcad design`` recorded the value it was written for and
+    the file (with its ``--set`` values) now states another, marked as no longer applying
+    (:func:`tactcad.vocabulary.schema.reason_as_read`, the arrays' rule). A reason that is
+    not a text is left out (the file's schema refuses it).
+
+    Args:
+        data: the die file's tables, its overrides applied.
+
+    Returns:
+        (key, text shown) pairs in the file's order; empty without ``[assumptions]``.
+    """
+    why = data.get("assumptions") if isinstance(data, Mapping) else None
+    if not isinstance(why, Mapping):
+        return ()
+    return tuple((key, reason_as_read(key, reason.strip(), data)[0])
+                 for key, reason in why.items() if isinstance(reason, str))
 
 
 def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None) -> DieDesign:
@@ -183,7 +209,8 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
                                                     "words": CLEANED_CELL_NAME_WORDS}])])
     problems.raise_if_any()
     return DieDesign(die, jaw, source, weibull_of(model.strength), attach_of(model.attach),
-                     frozenset(data.get(DIE_TABLE) or {}))
+                     frozenset(data.get(DIE_TABLE) or {}), die_assumptions(data),
+                     stale_reasons(data))
 
 
 def attach_of(section: DieAttachSection | None) -> DieAttach | None:
@@ -264,7 +291,20 @@ def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
                   max_grasp_force_N: float | None = None,
                   kobj_accuracy_rel: float | None = None) -> str:
     """A die design file's text (TOML) for these targets, headed by the command that made
-    it and with the reasons of its values under ``[assumptions]``."""
+    it and with the reasons of its values under ``[assumptions]``, each ending with the
+    value it is written for (:func:`tactcad.vocabulary.schema.with_written_values`, as an
+    array's design file: a later hand edit of the value shows its reason stale).
+
+    Args:
+        jaw: the jaw as the file states it (a trocar class or a jaw file's name).
+        kr_over_km: K_r / K_m. kobj_range: (LO, HI), N/mm. full_scale_force_N: N.
+        columns: units along the die. pitch_um: their spacing, um. name: the die's name.
+        command: the command that made it (its header). reasons: key -> reason.
+        max_grasp_force_N: N, or None (left out). kobj_accuracy_rel: relative, or None.
+
+    Returns:
+        The file's text.
+    """
     import tomli_w
 
     from tactcad.version import VERSION
@@ -282,4 +322,4 @@ def die_file_text(jaw: str, kr_over_km: float, kobj_range: tuple[float, float],
     return (f"# Written by tactcad {VERSION}: `{command}`.\n"
             "# A silicon die: `tactcad die --design THIS_FILE` derives the die, writes its "
             "masks, STEP and traveller and checks them.\n# Units: N/mm, N, um.\n\n"
-            + tomli_w.dumps(data))
+            + tomli_w.dumps(with_written_values(data)))

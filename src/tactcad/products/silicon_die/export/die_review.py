@@ -41,6 +41,23 @@ def design_head(name: str, source: Mapping[str, Any] | None) -> dict:
             "cad_stack": stack_versions(), "units": "um (the die), mm (the mount's STEP)"}
 
 
+def assumptions_section(assumptions) -> dict:
+    """The manifest's ``assumptions`` section of a die, in an array's layout
+    (:func:`tactcad.export.manifest.assumptions_section`: one ``{"field", "reason"}`` each),
+    from its design file's reasons as shown
+    (:func:`tactcad.products.silicon_die.design.die_file.die_assumptions`: a reason a hand
+    edit left stale says so); nothing for a die asked by options or a file without them.
+
+    Args:
+        assumptions: (key, text) pairs.
+
+    Returns:
+        ``{"assumptions": [...]}``, or ``{}`` without reasons.
+    """
+    rows = [{"field": key, "reason": why} for key, why in assumptions]
+    return {"assumptions": rows} if rows else {}
+
+
 def die_manifest(head: Mapping[str, Any], folder: Path, files: Mapping[str, str],
                  facts: Mapping[str, Any]) -> dict:
     """The die's ``manifest.json``: ``head`` (:func:`design_head`), every written file
