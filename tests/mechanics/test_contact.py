@@ -126,6 +126,70 @@ def test_the_representatives_rows_solve_as_the_whole_matrix_does():
     assert np.allclose(got, want, rtol=0, atol=1e-10 * abs(want).max())
 
 
+
+@pytest.mark.parametrize("columns, cells", [(5, 8), (4, 9), (3, 8)])
+def test_the_representatives_rows_alone_are_the_whole_matrix_rows_to_the_bit(columns, cells):
+    """Built for the representatives alone (not every cell of the punches holding them),
+    the rows are the whole matrix's to the bit, in :func:`built_cells`' order; the
+    symmetric solve on them needs no gather and gives the whole matrix's solution."""
+    from tactcad.mechanics.contact import (built_cells, influence_matrix, mesh_punches,
+                                           mirror_maps, representatives, solve_by_symmetry)
+
+    punches = _two_rows(columns)
+    mesh = mesh_punches(punches, 1.0, cells)
+    sample = Sample(1.0, 0.5)
+    maps = mirror_maps(mesh)
+    reps = representatives(maps, len(mesh.punch))
+    rows = built_cells(mesh, reps)
+    assert np.array_equal(np.sort(rows), reps)
+    full = influence_matrix(mesh, sample)
+    part = influence_matrix(mesh, sample, cells=rows)
+    assert part.shape == (len(reps), len(mesh.punch))
+    assert part.tobytes() == full[rows].tobytes()
+    rhs = np.zeros((len(mesh.punch), len(punches)))
+    rhs[np.arange(len(mesh.punch)), mesh.punch] = 1.0
+    want = np.linalg.solve(full, rhs)
+    got = solve_by_symmetry(part, rhs, maps, rows)
+    assert np.allclose(got, want, rtol=0, atol=1e-10 * abs(want).max())
+
+
+def test_the_corner_primitive_on_its_own_axes_is_the_broadcast_one_to_the_bit():
+    """u and v on separate axes (as a tensor grid of cell edges passes them) give the bits
+    of the same values broadcast to one shape first, zeros and signs included; scalars
+    stay scalars."""
+    from tactcad.mechanics.contact import _corner_primitive
+
+    rng = np.random.default_rng(7)
+    u = rng.normal(size=(30, 9, 1))
+    v = rng.normal(size=(30, 1, 11))
+    u[0, 2, 0], v[1, 0, 3], v[2, 0, 0] = 0.0, 0.0, -0.0
+    got = _corner_primitive(u, v)
+    want = np.stack([_corner_primitive(a.ravel(), b.ravel())
+                     for a, b in zip(*np.broadcast_arrays(u, v))]).reshape(got.shape)
+    assert got.shape == (30, 9, 11)
+    assert got.tobytes() == want.tobytes()
+    assert np.shape(_corner_primitive(1.5, -2.0)) == ()
+    assert _corner_primitive(0.0, 3.0) == 0.0
+
+
+def test_the_blas_libraries_are_looked_up_again_only_after_an_import(monkeypatch):
+    """The thread controls are found once and reused while no module is imported (a
+    design search's hundred solves read the process's maps once, not twice a solve)."""
+    import sys
+
+    from tactcad.mechanics import blas_threads
+
+    looked = []
+    monkeypatch.setattr(blas_threads, "_openblas_paths", lambda: looked.append(1) or [])
+    monkeypatch.setattr(blas_threads, "_FOUND", [None, None])
+    assert blas_threads.blas_thread_controls() == []
+    assert blas_threads.blas_thread_controls() == []
+    assert len(looked) == 1
+    monkeypatch.setitem(sys.modules, "tactcad_imported_since", sys)
+    blas_threads.blas_thread_controls()
+    assert len(looked) == 2
+
+
 def test_a_kept_block_is_the_block_computed_afresh_wherever_the_array_lies():
     """Blocks kept across meshes: the same layout moved across the plane (its cells'
     relative coordinates differ in their last bits) has the same influence matrix to the

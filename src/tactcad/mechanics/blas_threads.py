@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import sys
 from typing import Callable, Iterator
 
 #: The symbol prefixes and suffixes of the OpenBLAS builds' thread setters and getters.
@@ -32,8 +33,28 @@ def _openblas_paths() -> list[str]:
     return sorted(paths)
 
 
+#: The controls last found and the module count they were found at (:func:`blas_thread_controls`).
+_FOUND: list = [None, None]
+
+
 def blas_thread_controls() -> list[tuple[Callable[[int], object], Callable[[], int]]]:
-    """(setter, getter) of each loaded OpenBLAS library's thread count.
+    """(setter, getter) of each loaded OpenBLAS library's thread count, looked up again
+    only when a module has been imported since the last look: a library is loaded by
+    importing an extension (numpy, scipy.linalg), and reading the process's maps and
+    opening each library cost a design search's hundred contact solves about 0.2 CPU s.
+
+    Returns:
+        One pair per library found (none where none is loaded or it exposes neither).
+    """
+    modules = len(sys.modules)
+    if _FOUND[0] != modules:
+        _FOUND[1] = _found_controls()
+        _FOUND[0] = modules
+    return list(_FOUND[1])
+
+
+def _found_controls() -> list[tuple[Callable[[int], object], Callable[[], int]]]:
+    """(setter, getter) of each OpenBLAS library :func:`_openblas_paths` lists.
 
     Returns:
         One pair per library found (none where none is loaded or it exposes neither).

@@ -164,28 +164,33 @@ def _corner_primitive(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     L(p, q) = asinh(p/q) = log1p(p/q (1 + p/(ρ + q))), ρ = √(u² + v²) shared by the two
     (ρ − q = p²/(ρ + q): no cancellation, and one root instead of two).
     """
-    # arrays of one shape, at least 1-d: the in-place steps below need arrays, not scalars
-    u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
-    shape = u.shape
-    u, v = np.atleast_1d(u), np.atleast_1d(v)
+    # |u|, |v|, their squares, floors and signs on the arguments' own shapes: on a grid
+    # (u along one axis, v along another, as :func:`_love_on_edges` passes them) these are a
+    # small fraction of the broadcast result, whose elements then see each step once; every
+    # element is the same operation on the same values as on the broadcast arrays (same bits)
+    u, v = np.asarray(u, float), np.asarray(v, float)
+    shape = np.broadcast_shapes(u.shape, v.shape)
+    u, v = np.atleast_1d(u), np.atleast_1d(v)  # the in-place steps below need arrays
     au, av = np.abs(u), np.abs(v)
-    rho = au * au
-    rho += av * av
+    rho = np.add(au * au, av * av)  # a new array of the broadcast shape
     np.sqrt(rho, out=rho)  # not np.hypot: libm's is five times slower, and no side overflows
     # a nil |u| or |v| zeroes F by its sign; 1e-300 mm in its place keeps the logs finite
     su, sv = np.maximum(au, 1e-300), np.maximum(av, 1e-300)
-    a = av / (rho + su)
+    a = np.add(rho, su)
+    np.divide(av, a, out=a)
     a += 1.0
     a *= av / su
     np.log1p(a, out=a)
     a *= au
-    b = au / (rho + sv)
+    b = np.add(rho, sv, out=rho)  # ρ's last use: its array holds b
+    np.divide(au, b, out=b)
     b += 1.0
     b *= au / sv
     np.log1p(b, out=b)
     b *= av
     a += b
-    a *= np.sign(u) * np.sign(v)
+    a *= np.sign(u)  # a sign product of +-1 and +-0 is exact in either order
+    a *= np.sign(v)
     return a.reshape(shape)
 
 
@@ -572,7 +577,7 @@ def _love_on_edges(centres: np.ndarray, ex: np.ndarray, ez: np.ndarray) -> np.nd
     four corners (a node is the corner of up to four cells: four times fewer primitives)."""
     u = ex[None, :, None] - centres[:, 0, None, None]
     v = ez[None, None, :] - centres[:, 1, None, None]
-    f = _corner_primitive(*np.broadcast_arrays(u, v))
+    f = _corner_primitive(u, v)  # u and v on their own axes (see there)
     cells = f[:, 1:, 1:] - f[:, :-1, 1:] - f[:, 1:, :-1] + f[:, :-1, :-1]
     return cells.reshape(len(centres), -1)
 
@@ -677,7 +682,8 @@ def face_block(target: FaceGrid, source: FaceGrid, sample: Sample, n_gauss: int)
 
 
 def influence_matrix(mesh: CellMesh, sample: Sample,
-                     targets: Sequence[int] | None = None) -> np.ndarray:
+                     targets: Sequence[int] | None = None,
+                     cells: np.ndarray | None = None) -> np.ndarray:
     """Displacement at each cell centre per unit pressure on each cell, shape (n, n) (mm/MPa).
 
     Half-space: Love's rectangle formula. Layer: that less the layer's correction
@@ -691,9 +697,13 @@ def influence_matrix(mesh: CellMesh, sample: Sample,
         mesh: the cells. sample: the sample.
         targets: the punches whose cells' rows are built, in ascending order (default every
             punch): the rows of the cells :func:`target_cells` lists, in that order.
+        cells: the cells whose rows are built (default every cell of ``targets``), in
+            the order :func:`built_cells` gives; given, ``targets`` is ignored. A
+            symmetric solve reads the rows of its orbits' representatives alone
+            (:func:`solve_by_symmetry`): built so, no other row is written or gathered.
 
     Returns:
-        The matrix, shape (rows, n) (mm/MPa).
+        The matrix, shape (rows, n) (mm/MPa): each row the same bits whichever rows are built.
 
     Raises:
         ContactError: a bad sample.
@@ -705,24 +715,57 @@ def influence_matrix(mesh: CellMesh, sample: Sample,
         n_gauss = int(min(12, max(3, np.ceil(4 * cell / sample.thickness_mm))))
     punches = np.unique(mesh.punch)
     owners = [_as_slice(np.flatnonzero(mesh.punch == k)) for k in punches]
-    wanted = punches if targets is None else np.asarray(targets)
-    out = np.empty((len(target_cells(mesh, wanted)), len(mesh.punch)))
+    if cells is None:
+        wanted = punches if targets is None else np.asarray(targets)
+        picks = [slice(None)] * len(wanted)
+    else:
+        wanted, picks = _picked_rows(mesh, punches, owners, np.asarray(cells))
+    out = np.empty((sum(_picked_size(owners[int(np.searchsorted(punches, a))], pick)
+                        for a, pick in zip(wanted, picks)), len(mesh.punch)))
     done: dict[tuple, np.ndarray] = {}
     row = 0
-    for a in wanted:
+    for a, pick in zip(wanted, picks):
         ia = owners[int(np.searchsorted(punches, a))]
-        rows = slice(row, row + _size(ia))
-        row += _size(ia)
+        size = _picked_size(ia, pick)
+        rows = slice(row, row + size)
+        row += size
         for b, ib in zip(punches, owners):
             if mesh.face_grids is not None:
                 block = face_block(mesh.face_grids[a], mesh.face_grids[b], sample, n_gauss)
             else:
                 block = _shared_block(mesh, ia, ib, sample, n_gauss, done)
+            block = block[pick]
             if isinstance(ib, slice):
                 out[rows, ib] = block
             else:
                 out[rows, _as_index(ib)] = block
     return out
+
+
+def _picked_rows(mesh: CellMesh, punches: np.ndarray, owners: list,
+                 cells: np.ndarray) -> tuple[np.ndarray, list]:
+    """The punches holding ``cells`` and, for each, which of its own cells they are.
+
+    Args:
+        mesh: the cells. punches: the punch indices, ascending. owners: each punch's cells
+            (a slice or an index array, :func:`_as_slice`). cells: cell indices.
+
+    Returns:
+        (the punches, ascending; per punch a slice of every cell or an index array of the
+        picked cells' places among its own).
+    """
+    wanted = np.unique(mesh.punch[cells])
+    picks = []
+    for a in wanted:
+        own = _as_index(owners[int(np.searchsorted(punches, a))])
+        place = np.flatnonzero(np.isin(own, cells))
+        picks.append(slice(None) if len(place) == len(own) else place)
+    return wanted, picks
+
+
+def _picked_size(owner, pick) -> int:
+    """Rows :func:`influence_matrix` builds for a punch of cells ``owner`` picked by ``pick``."""
+    return _size(owner) if isinstance(pick, slice) else len(pick)
 
 
 def _shared_block(mesh: CellMesh, ia, ib, sample: Sample, n_gauss: int,
@@ -737,6 +780,20 @@ def _shared_block(mesh: CellMesh, ia, ib, sample: Sample, n_gauss: int,
     if block is None:
         block = done[key] = _influence_block(local, src, mesh.half[ib], sample, n_gauss)
     return block
+
+
+def built_cells(mesh: CellMesh, cells: np.ndarray) -> np.ndarray:
+    """The cells whose rows :func:`influence_matrix` builds when asked for ``cells``, in
+    the order of its rows: punch by punch, each punch's in the mesh's order.
+
+    Args:
+        mesh: the cells. cells: cell indices.
+
+    Returns:
+        Cell indices, shape (len(unique cells),).
+    """
+    every = target_cells(mesh, np.unique(mesh.punch[np.asarray(cells)]))
+    return every[np.isin(every, cells)]
 
 
 def _size(index) -> int:
@@ -811,10 +868,9 @@ def solve_punches(punches, sample: Sample, cell_mm: float = DEFAULT_CELL_MM,
     mesh = mesh_punches(punches, cell_mm, min_cells)
     maps = mirror_maps(mesh)
     # the symmetric solve reads only the rows of the cells that represent their mirror
-    # orbits: the rows of the punches holding them are all that is built
-    targets = np.unique(mesh.punch[representatives(maps, len(mesh.punch))])
-    rows = target_cells(mesh, targets)
-    a = influence_matrix(mesh, sample, targets)
+    # orbits: those rows are all that is built
+    rows = built_cells(mesh, representatives(maps, len(mesh.punch)))
+    a = influence_matrix(mesh, sample, cells=rows)
     incidence = np.zeros((len(mesh.punch), len(punches)))
     incidence[np.arange(len(mesh.punch)), mesh.punch] = 1.0
     with single_threaded_blas():
