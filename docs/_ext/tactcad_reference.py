@@ -361,10 +361,19 @@ def jaw_file_rows() -> list[list[str]]:
             if left_out == "optional":  # None: the class's, derived, or nothing
                 said = limits.why if limits and limits.why else ""
                 left_out = "as the reason says" if "left out" in said else "none"
+        why = limits.why if limits and limits.why else ""
         rows.append([code(key), required.get(key, "optional"), text(_type_words(info)),
-                     left_out, text(limits.why) if limits and limits.why else ""])
+                     left_out, text(_jaw_file_reason(why, key in required))])
     return rows
 
+
+def _jaw_file_reason(why: str, required: bool) -> str:
+    """A ``[grasper_jaw]`` key's reason as a jaw file reads it: a key the file must state
+    loses the schema's "left out: ..." clause, which holds for a design file's own
+    ``[grasper_jaw]`` table (the class's value) and not for a jaw file (refused)."""
+    if not required:
+        return why
+    return why.split("; left out:")[0].removesuffix(", left out")
 
 def jaw_file_markdown() -> str:
     """A lab's own jaw file (``tactcad design --jaw FILE``, a die's ``die.jaw``): every key
@@ -373,7 +382,7 @@ def jaw_file_markdown() -> str:
             "jaw file must state (`tactcad.partlib.grasper_jaw.JAW_FILE_KEYS`). A jaw file "
             "holds one `[grasper_jaw]` table. A *required* key left out is refused by its "
             "name (a class's own jaw needs no file: `--jaw 5` or `--jaw 10`); of a pair, "
-            "state one. The trocar class is text, quoted as TOML writes it "
+            "state one (both are taken where they agree). The trocar class is text, quoted as TOML writes it "
             "(`shaft_class_mm = \"5\"`); every size is a number in mm, the opening in "
             "degrees. A value outside its range is refused with the range and the reason "
             "(exit 2), every error of the file at once.\n\n"

@@ -140,6 +140,9 @@ def test_the_jaw_file_table_lists_every_key_and_what_a_jaw_file_must_state():
     must = {k for one in missing_jaw_file_keys({}) for k in one.split(" or ")}
     assert {k for k, said in rows.items() if said.startswith("required")} == must
     assert {"pin_inset_mm", "opening_angle_deg"} <= must
+    for key in must:  # refused when left out: the table says nothing else of leaving it out
+        line = next(x for x in page.splitlines() if x.startswith(f"| `{key}` |"))
+        assert "left out:" not in line.replace("\\", ""), line
     assert 'one of \\"5\\"\\, \\"10\\"' in page  # text: shaft_class_mm = "5"
     for key in GrasperJawSection.model_fields:
         line = next(x for x in page.splitlines() if x.startswith(f"| `{key}` |"))

@@ -135,6 +135,17 @@ def test_load_die_takes_a_project_folder_and_refuses_none_outside_a_dies(robot_f
     assert caught.value.field == "path"
 
 
+def test_load_die_names_a_jaw_file_as_one(robot_folder):
+    """A lab's jaw file given where its die's design is wanted is named a jaw file, with the
+    command that reads it, not as an array's design file."""
+    import tactcad
+
+    with pytest.raises(DesignError) as caught:
+        tactcad.load_die(robot_folder / JAW)
+    assert "jaw file" in caught.value.why and "array" not in caught.value.why
+    assert caught.value.alternatives[0]["option"].startswith("--jaw ")
+
+
 @pytest.mark.slow  # a whole export of a die, then the check's export again
 def test_check_exports_again_after_a_hand_edit_of_the_jaw_file(robot_folder):
     """The lab's case: export, then the pin and the opening edited in the jaw file. The

@@ -28,6 +28,7 @@ from tactcad.design.requirements_section import (MAX_FULL_SCALE_FORCE_N, MAX_GRA
                                                  MAX_KOBJ_N_PER_MM, MIN_FULL_SCALE_FORCE_N,
                                                  MIN_KOBJ_N_PER_MM)
 from tactcad.design.file_kind import DIE_TABLE, is_die_file  # noqa: F401 (is_die_file re-exported)
+from tactcad.design.file_kind import refuse_jaw_file
 from tactcad.errors import DesignError
 from tactcad.vocabulary.schema import (Problems, Section, Text, described_text, integer,
                                        listing, number, reason_as_read, read_toml,
@@ -176,12 +177,13 @@ def load_die_design(path: str | Path, overrides: Mapping[str, Any] | None = None
     ``--set``) applied, validated.
 
     Raises:
-        DesignError: not a readable TOML file, or no ``[die]`` table.
+        DesignError: not a readable TOML file, a jaw file, or no ``[die]`` table.
         DesignErrors: a field out of range; a jaw file outside the design's folder or
             missing; LO >= HI.
     """
     source = Path(path)
     data = read_toml(source, "design file")
+    refuse_jaw_file(data, source)  # a jaw file named as such, not as an array's design
     if not is_die_file(data):
         raise DesignError("design file", str(source), f"a file with a [{DIE_TABLE}] table",
                           "an array's design file is read by the other commands")
