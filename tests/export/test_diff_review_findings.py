@@ -51,6 +51,18 @@ def test_a_comb_designs_edited_values_are_named_by_their_dotted_keys(tmp_path):
     assert d.changed
 
 
+def test_a_grades_modulus_is_not_stated_where_the_file_leaves_it_out(tmp_path):
+    old = tactcad.load(TI).plan
+    new = tactcad.load(TI, set={"material.grade": "17-4PH-H900",
+                                "material.name": "17-4PH"}).plan
+    assert "material.youngs_modulus_MPa" not in stated_section(old)
+    d = compare(write_export(tmp_path / "old", {"stated": stated_section(old)}),
+                write_export(tmp_path / "new", {"stated": stated_section(new)}))
+    assert {s["name"] for s in d.stated} == {"material.grade", "material.name"}
+    edited = tactcad.load(TI, set={"material.youngs_modulus_MPa": 110000.0}).plan
+    assert stated_section(edited)["material.youngs_modulus_MPa"] == 110000.0  # the file's
+
+
 def test_a_manifest_without_stated_values_names_none(tmp_path):
     d = compare(write_export(tmp_path / "old", {}),
                 write_export(tmp_path / "new", {"stated": {"sheet.thickness_mm": 1.0}}))
@@ -155,10 +167,26 @@ def test_a_second_diff_into_a_folder_replaces_the_first_ones_pictures(tmp_path, 
     record = json.loads((out / DIFF_RECORD).read_text(encoding="utf-8"))
     assert record["files"] == ["b_overlay.png", "b_side_by_side.png"]
     assert record["new"] == str(b_moved)
-    # no change: the folder is left empty, holding no earlier comparison's pictures
+    # no change: no picture, and the record (listing none) so the folder is known next time
     assert cli.main(["diff", str(base), str(base), "--out", str(out), "--quiet"]) == 0
-    assert list(out.iterdir()) == []
+    assert [p.name for p in out.iterdir()] == [DIFF_RECORD]
+    assert json.loads((out / DIFF_RECORD).read_text(encoding="utf-8"))["files"] == []
+    assert cli.main(["diff", str(base), str(a_moved), "--out", str(out), "--quiet"]) == 1
     capsys.readouterr()
+
+
+def test_a_folder_without_a_record_is_refused_saying_so(tmp_path, capsys):
+    base = _sheet_export(tmp_path / "base", {"a": 5})
+    moved = _sheet_export(tmp_path / "moved", {"a": 30})
+    out = tmp_path / "pictures"
+    out.mkdir()
+    (out / "assembly_overlay.png").write_bytes(b"an older diff's")
+    code = cli.main(["diff", str(base), str(moved), "--out", str(out), "--json"])
+    message = json.loads(capsys.readouterr().out)["error"]["message"]
+    assert code == 2 and "no diff wrote" not in message
+    assert f"holds no {DIFF_RECORD}" in message and "assembly_overlay.png" in message
+    assert "empty it, or name another folder" in message
+    assert [p.name for p in out.iterdir()] == ["assembly_overlay.png"]
 
 
 def test_a_folder_holding_files_no_diff_wrote_is_refused_and_kept(tmp_path, capsys):

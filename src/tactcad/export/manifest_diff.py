@@ -641,10 +641,34 @@ def earlier_diff_files(out_dir: str | Path) -> set[str]:
     if foreign:
         raise DesignError("--out", str(out), "a new or empty folder, or one holding an "
                           f"earlier diff's pictures (listed in its {DIFF_RECORD}, replaced)",
-                          f"{out} holds files no diff wrote ({', '.join(foreign[:5])}"
-                          f"{' ...' if len(foreign) > 5 else ''}): this comparison's pictures "
-                          "would be mixed with them; name another folder")
+                          unknown_files_reason(out, foreign, listed is not None,
+                                               DIFF_RECORD in present))
     return ours & present
+
+
+def unknown_files_reason(out: Path, foreign: list[str], recorded: bool,
+                         record_present: bool) -> str:
+    """Why a diff's ``--out`` folder is refused, and what to do.
+
+    Args:
+        out: the folder. foreign: the names in it no diff record lists (sorted).
+        recorded: True where the folder holds a :data:`DIFF_RECORD` a diff wrote.
+        record_present: True where it holds a file of that name at all.
+
+    Returns:
+        The reason: the files a diff's record does not list where it has one, else that it
+        has none a diff wrote (so its files, an older diff's pictures say, cannot be told
+        from a lab's); and to empty the folder or name another.
+    """
+    names = f"{', '.join(foreign[:5])}{' ...' if len(foreign) > 5 else ''}"
+    todo = "empty it, or name another folder"
+    if recorded:
+        return (f"{out} holds files its {DIFF_RECORD} does not list ({names}): this "
+                f"comparison's pictures would be mixed with them; {todo}")
+    which = (f"a {DIFF_RECORD} no diff wrote" if record_present
+             else f"no {DIFF_RECORD} (the record a diff keeps of the pictures it wrote)")
+    return (f"{out} holds {which}, so its files ({names}) cannot be told from a lab's "
+            f"and none is deleted; {todo}")
 
 
 def _recorded(record: Path) -> set[str] | None:
@@ -679,17 +703,23 @@ def clear_earlier_diff(out_dir: str | Path) -> list[str]:
     return names
 
 
-def write_diff_record(diff: Diff, written: list[Path], out_dir: str | Path) -> Path | None:
+def write_diff_record(diff: Diff, written: list[Path], out_dir: str | Path) -> Path:
     """Write :data:`DIFF_RECORD` into ``out_dir``: the comparison (``old``, ``new``) and the
-    pictures it wrote there (``files``, names); none when it wrote no picture.
+    pictures it wrote there (``files``, names; empty where nothing changed, so a later diff
+    still knows the folder as a diff's).
+
+    Args:
+        diff: the comparison. written: the pictures it wrote. out_dir: the ``--out`` folder.
+
+    Returns:
+        The record's path.
 
     Raises:
         OSError: the record cannot be written.
     """
     from tactcad.atomic import write_bytes_atomic
 
-    if not written:
-        return None
+    Path(out_dir).mkdir(parents=True, exist_ok=True)
     record = {"written_by": DIFF_WRITER, "old": diff.old, "new": diff.new,
               "files": sorted(Path(p).name for p in written)}
     return write_bytes_atomic(Path(out_dir) / DIFF_RECORD,
