@@ -63,6 +63,16 @@ def test_a_grades_modulus_is_not_stated_where_the_file_leaves_it_out(tmp_path):
     assert stated_section(edited)["material.youngs_modulus_MPa"] == 110000.0  # the file's
 
 
+def test_a_record_only_one_export_has_reads_added_or_removed(tmp_path):
+    old = write_export(tmp_path / "old", {"requirements": {"closed_form_matrix": [
+        {"requirement": "gone"}]}})
+    new = write_export(tmp_path / "new", {"rows": [{"row": 1, "role": "reference"}]})
+    lines = compare(old, new).lines()
+    assert "row 1 (reference)  added" in lines
+    assert "requirement   gone: removed" in lines
+    assert not any("True" in line or "False" in line for line in lines)
+
+
 def test_a_manifest_without_stated_values_names_none(tmp_path):
     d = compare(write_export(tmp_path / "old", {}),
                 write_export(tmp_path / "new", {"stated": {"sheet.thickness_mm": 1.0}}))

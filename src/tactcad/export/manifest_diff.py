@@ -272,8 +272,26 @@ def row_words(record: Mapping[str, Any]) -> str:
     return f"row {record['row']}" + (f" ({role})" if role else "")
 
 
+def presence_word(changes: Mapping[str, Mapping]) -> str | None:
+    """"added" or "removed" for a record only one export has (its ``present`` change),
+    else None.
+
+    Args:
+        changes: a record's changes ({field: {"before", "after"}}).
+
+    Returns:
+        The word, or None where both exports have the record.
+    """
+    present = changes.get("present")
+    if not isinstance(present, Mapping):
+        return None
+    return "added" if present.get("after") else "removed"
+
+
 def _fields_text(changes: Mapping[str, Mapping], units: Mapping[str, str] = ELEMENT_FIELDS
                  ) -> str:
+    if (word := presence_word(changes)) is not None:
+        return word
     parts = []
     for k, ch in changes.items():
         unit = units.get(k, "")
@@ -289,6 +307,8 @@ def _requirement_text(changes: Mapping[str, Mapping]) -> str:
             return f"{100 * v:+.3g} %"
         return _value(v)
 
+    if (word := presence_word(changes)) is not None:
+        return word
     return ", ".join(f"{k} {shown(k, ch['before'])} -> {shown(k, ch['after'])}"
                      for k, ch in changes.items())
 
