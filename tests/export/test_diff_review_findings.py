@@ -12,6 +12,7 @@ import pytest
 import tactcad
 from tactcad import cli
 from tactcad.export.manifest import stated_section, strength_section
+from tactcad.errors import DesignError
 from tactcad.export.manifest_diff import DIFF_RECORD, compare
 
 HARDWARE = Path(__file__).resolve().parents[2] / "hardware"
@@ -27,6 +28,19 @@ def write_export(folder: Path, manifest: dict, files: dict[str, str] | None = No
         (folder / rel).write_text(text, encoding="utf-8")
     (folder / "manifest.json").write_text(json.dumps({"files": [], **manifest}),
                                           encoding="utf-8")
+    return folder
+
+
+def with_digests(folder: Path) -> Path:
+    """``folder`` with its manifest's sha256 of each listed file the file's own."""
+    from tactcad.atomic import file_sha256
+
+    path = folder / "manifest.json"
+    manifest = json.loads(path.read_text(encoding="utf-8"))
+    for f in manifest["files"]:
+        if (folder / f["path"]).is_file():
+            f["sha256"] = file_sha256(folder / f["path"])
+    path.write_text(json.dumps(manifest), encoding="utf-8")
     return folder
 
 
@@ -134,7 +148,7 @@ def test_the_bill_of_materials_items_added_removed_and_recounted(tmp_path):
         "1,element_a6mm,4,pcs\n2,bolt_M3x35,2,pcs\n3,bolt_M3x40,2,pcs\n")})
     new = write_export(tmp_path / "new", listed, {"bom.csv": "\ufeff" + BOM_HEAD + (
         "1,element_a6mm,3,pcs\n2,bolt_M3x30,2,pcs\n3,bolt_M3x35,2,pcs\n")})
-    d = compare(old, new)
+    d = compare(with_digests(old), with_digests(new))
     assert d.bom == {"added": [{"item": "bolt_M3x30", "quantity": 2}],
                      "removed": [{"item": "bolt_M3x40", "quantity": 2}],
                      "changed": [{"item": "element_a6mm", "before": 4, "after": 3}]}
@@ -147,7 +161,17 @@ def test_a_dies_bill_of_materials_is_read_by_its_own_columns(tmp_path):
     listed = {"files": [{"path": "bom.csv", "kind": "bom-csv", "sha256": "x"}]}
     old = write_export(tmp_path / "old", listed, {"bom.csv": "item,qty\ndie,1\nresistor,4\n"})
     new = write_export(tmp_path / "new", listed, {"bom.csv": "item,qty\ndie,1\nresistor,2\n"})
-    assert compare(old, new).bom["changed"] == [{"item": "resistor", "before": 4, "after": 2}]
+    assert compare(with_digests(old), with_digests(new)).bom["changed"] == [
+        {"item": "resistor", "before": 4, "after": 2}]
+
+
+def test_a_bill_of_materials_other_than_the_exports_is_refused(tmp_path):
+    listed = {"files": [{"path": "bom.csv", "kind": "bom-csv", "sha256": "x"}]}
+    old = with_digests(write_export(tmp_path / "old", listed, {"bom.csv": "item,qty\ndie,1\n"}))
+    new = with_digests(write_export(tmp_path / "new", listed, {"bom.csv": "item,qty\ndie,2\n"}))
+    (new / "bom.csv").write_bytes(b"\x00\xff garbage")  # after the export
+    with pytest.raises(DesignError, match="bom.csv is not the file the export wrote"):
+        compare(old, new)
 
 
 SVG = ('<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="20mm" '

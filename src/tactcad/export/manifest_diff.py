@@ -387,14 +387,17 @@ def read_bom(folder: str | Path, files: Mapping[str, dict]) -> dict[str, Any] | 
     item's rows summed; None when its manifest lists no ``bom.csv`` or it cannot be read.
 
     Raises:
-        DesignError: a ``bom.csv`` path leading out of the export.
+        DesignError: a ``bom.csv`` path leading out of the export, or one whose sha256 is
+            not the one the manifest records of it (:func:`bom_unchanged`).
     """
     import csv
 
     if BOM_FILE not in files:
         return None
+    path = _inside(folder, BOM_FILE)
+    bom_unchanged(path, files[BOM_FILE])
     try:
-        text = _inside(folder, BOM_FILE).read_text(encoding="utf-8-sig")
+        text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError):
         return None
     rows = list(csv.DictReader(text.splitlines()))
@@ -411,6 +414,31 @@ def read_bom(folder: str | Path, files: Mapping[str, dict]) -> dict[str, Any] | 
         out[r[item]] = n if was is None else (
             was + n if isinstance(was, (int, float)) and isinstance(n, (int, float)) else n)
     return out
+
+
+def bom_unchanged(path: Path, record: Mapping[str, Any]) -> None:
+    """Refuse an export's ``bom.csv`` that is not the file its manifest records: its sha256
+    (hex) differs from the manifest's (edited or damaged since the export). A record
+    without a digest, or a file that cannot be read, is let through.
+
+    Args:
+        path: the export's ``bom.csv``. record: the manifest's record of it.
+
+    Raises:
+        DesignError: the digests differ.
+    """
+    from tactcad.atomic import file_sha256
+
+    digest = record.get("sha256") if isinstance(record, Mapping) else None
+    try:
+        actual = file_sha256(path) if isinstance(digest, str) else None
+    except OSError:
+        return
+    if actual is not None and actual != digest:
+        raise DesignError(f"{MANIFEST}: files", str(path),
+                          f"the {BOM_FILE} whose sha256 the manifest records",
+                          f"{path} is not the file the export wrote (edited or damaged since); "
+                          "export again, or compare another export")
 
 
 def _number(text: Any) -> Any:
