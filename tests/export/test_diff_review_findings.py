@@ -87,6 +87,16 @@ def test_a_record_only_one_export_has_reads_added_or_removed(tmp_path):
     assert not any("True" in line or "False" in line for line in lines)
 
 
+def test_exports_of_different_products_say_so_once_and_compare_what_both_have(tmp_path):
+    old = write_export(tmp_path / "old", {"product": "metal-array", "stated": {"a.b": 1}})
+    new = write_export(tmp_path / "new", {"product": "silicon-die", "stated": {"die.x": 2},
+                                          "rows": [{"row": 1, "role": "reference"}]})
+    lines = compare(old, new).lines()
+    assert lines[0].startswith("products      the two exports are of different products "
+                               "(metal-array -> silicon-die)")
+    assert not any(line.startswith(("row ", "stated")) for line in lines)
+
+
 def test_a_manifest_without_stated_values_names_none(tmp_path):
     d = compare(write_export(tmp_path / "old", {}),
                 write_export(tmp_path / "new", {"stated": {"sheet.thickness_mm": 1.0}}))

@@ -168,6 +168,8 @@ class Diff:
     sheets: list = field(default_factory=list)
     bom: dict = field(default_factory=dict)  # added, removed, changed (bom.csv's items)
     files: dict = field(default_factory=dict)  # changed, added, removed (paths)
+    #: (older, newer) product where the two exports are of different products, else None
+    products: tuple | None = None
 
     @property
     def changed(self) -> bool:
@@ -186,7 +188,7 @@ class Diff:
 
     def lines(self) -> list[str]:
         """The report as text, one finding a line."""
-        out = []
+        out = [products_line(*self.products)] if self.products else []
         for name in self.parts.get("added", []):
             out.append(f"part added    {name}")
         for name in self.parts.get("removed", []):
@@ -361,6 +363,35 @@ def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
     diff.derived = [d for d in changed if not _is_stated(d["name"])]
     diff.sheets = _sheets(old, new, old_files, new_files)
     diff.bom = _bom(read_bom(old_dir, old_files), read_bom(new_dir, new_files))
+    return only_shared(diff, old.get("product"), new.get("product"))
+
+
+def products_line(old: Any, new: Any) -> str:
+    """The line saying two exports are of different products (named as their manifests
+    name them), said once at the top of the report."""
+    return (f"products      the two exports are of different products ({old} -> {new}): "
+            "only what both record is compared")
+
+
+def only_shared(diff: Diff, old: Any, new: Any) -> Diff:
+    """``diff`` where the manifests name different products (``old``, ``new``): its
+    elements, rows, requirements and stated values only one export records left out (one
+    product's records are not the other's removed or added) and the products noted;
+    ``diff`` itself where they are the same or either names none.
+
+    Args:
+        diff: the comparison. old, new: the manifests' ``product``.
+
+    Returns:
+        The comparison (the same object, changed in place).
+    """
+    if not old or not new or old == new:
+        return diff
+    diff.products = (old, new)
+    diff.elements = [e for e in diff.elements if presence_word(e["changes"]) is None]
+    diff.rows = [r for r in diff.rows if presence_word(r["changes"]) is None]
+    diff.requirements = [r for r in diff.requirements if presence_word(r["changes"]) is None]
+    diff.stated = [d for d in diff.stated if d["before"] is not None and d["after"] is not None]
     return diff
 
 
