@@ -118,3 +118,32 @@ def test_a_reason_carried_from_a_base_design_is_written_once_and_stays_stale():
     assert why["material.grade"] == ("Ti, E 113800 MPa (written for Ti-6Al-4V-annealed; the "
                                      "file now states CuBe-C17200-TF00: the reason no longer "
                                      "applies)")
+
+
+def test_a_design_written_by_design_as_a_base_keeps_its_pointer_and_one_record():
+    from tactcad.studies.inverse_design import start_tables, with_base_named
+
+    raw = read_toml(EXAMPLES / "ti_array_2x3" / "ti_array_2x3.toml", "design file")
+    pointer = "Kept from the base design (d1.toml), where it is an assumption."
+    d2 = with_written_values({**raw, "assumptions": {**raw.get("assumptions", {}),
+                                                     "material.grade": pointer}})
+    d5 = with_written_values(with_base_named(start_tables(d2, "d2.toml"), "d2.toml"))
+    why = d5["assumptions"]["material.grade"]
+    assert why == ("Kept from the base design (d2.toml), where it is an assumption. "
+                   "[written for Ti-6Al-4V-annealed]")
+    assert reason_as_read("material.grade", why, d5) == (
+        "Kept from the base design (d2.toml), where it is an assumption.", True)
+    edited = {**d2, "material": {**d2["material"], "grade": "17-4PH-H900"}}  # by hand
+    why = with_base_named(start_tables(edited, "d2.toml"), "d2.toml")["assumptions"][
+        "material.grade"]
+    assert why == ("Kept from the base design (d2.toml), where it is an assumption. (written "
+                   "for Ti-6Al-4V-annealed; the file now states 17-4PH-H900: the reason no "
+                   "longer applies)")
+
+
+def test_only_the_last_record_is_read():
+    from tactcad.vocabulary.schema import plain_reason
+
+    assert plain_reason("x [written for 1.5] [written for 2]") == ("x", "2")
+    assert plain_reason("x [written for [0.5, 2]]") == ("x", "[0.5, 2]")
+    assert plain_reason("x [written for 1") == ("x [written for 1", None)

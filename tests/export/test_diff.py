@@ -106,7 +106,8 @@ def test_same_export_twice_is_no_change_and_renders_nothing(exported, tmp_path, 
     code = cli.main(["diff", str(old), str(copy), "--out", str(tmp_path / "pictures")])
     out = capsys.readouterr().out
     assert code == 0 and out.splitlines() == ["no change"]
-    assert not any((tmp_path / "pictures").iterdir())
+    # no picture; the record, listing none, so a later diff knows the folder as a diff's
+    assert [p.name for p in (tmp_path / "pictures").iterdir()] == ["diff.json"]
 
 
 @pytest.mark.slow

@@ -12,6 +12,7 @@ import pytest
 import tactcad
 from tactcad import cli
 from tactcad.export.manifest import stated_section, strength_section
+from tactcad.errors import DesignError
 from tactcad.export.manifest_diff import DIFF_RECORD, compare
 
 HARDWARE = Path(__file__).resolve().parents[2] / "hardware"
@@ -27,6 +28,19 @@ def write_export(folder: Path, manifest: dict, files: dict[str, str] | None = No
         (folder / rel).write_text(text, encoding="utf-8")
     (folder / "manifest.json").write_text(json.dumps({"files": [], **manifest}),
                                           encoding="utf-8")
+    return folder
+
+
+def with_digests(folder: Path) -> Path:
+    """``folder`` with its manifest's sha256 of each listed file the file's own."""
+    from tactcad.atomic import file_sha256
+
+    path = folder / "manifest.json"
+    manifest = json.loads(path.read_text(encoding="utf-8"))
+    for f in manifest["files"]:
+        if (folder / f["path"]).is_file():
+            f["sha256"] = file_sha256(folder / f["path"])
+    path.write_text(json.dumps(manifest), encoding="utf-8")
     return folder
 
 
@@ -49,6 +63,38 @@ def test_a_comb_designs_edited_values_are_named_by_their_dotted_keys(tmp_path):
            "mm" in lines
     assert "stated        grasper_jaw.length_mm: 34 -> 35 mm" in lines
     assert d.changed
+
+
+def test_a_grades_modulus_is_not_stated_where_the_file_leaves_it_out(tmp_path):
+    old = tactcad.load(TI).plan
+    new = tactcad.load(TI, set={"material.grade": "17-4PH-H900",
+                                "material.name": "17-4PH"}).plan
+    assert "material.youngs_modulus_MPa" not in stated_section(old)
+    d = compare(write_export(tmp_path / "old", {"stated": stated_section(old)}),
+                write_export(tmp_path / "new", {"stated": stated_section(new)}))
+    assert {s["name"] for s in d.stated} == {"material.grade", "material.name"}
+    edited = tactcad.load(TI, set={"material.youngs_modulus_MPa": 110000.0}).plan
+    assert stated_section(edited)["material.youngs_modulus_MPa"] == 110000.0  # the file's
+
+
+def test_a_record_only_one_export_has_reads_added_or_removed(tmp_path):
+    old = write_export(tmp_path / "old", {"requirements": {"closed_form_matrix": [
+        {"requirement": "gone"}]}})
+    new = write_export(tmp_path / "new", {"rows": [{"row": 1, "role": "reference"}]})
+    lines = compare(old, new).lines()
+    assert "row 1 (reference)  added" in lines
+    assert "requirement   gone: removed" in lines
+    assert not any("True" in line or "False" in line for line in lines)
+
+
+def test_exports_of_different_products_say_so_once_and_compare_what_both_have(tmp_path):
+    old = write_export(tmp_path / "old", {"product": "metal-array", "stated": {"a.b": 1}})
+    new = write_export(tmp_path / "new", {"product": "silicon-die", "stated": {"die.x": 2},
+                                          "rows": [{"row": 1, "role": "reference"}]})
+    lines = compare(old, new).lines()
+    assert lines[0].startswith("products      the two exports are of different products "
+                               "(metal-array -> silicon-die)")
+    assert not any(line.startswith(("row ", "stated")) for line in lines)
 
 
 def test_a_manifest_without_stated_values_names_none(tmp_path):
@@ -127,7 +173,7 @@ def test_the_bill_of_materials_items_added_removed_and_recounted(tmp_path):
         "1,element_a6mm,4,pcs\n2,bolt_M3x35,2,pcs\n3,bolt_M3x40,2,pcs\n")})
     new = write_export(tmp_path / "new", listed, {"bom.csv": "\ufeff" + BOM_HEAD + (
         "1,element_a6mm,3,pcs\n2,bolt_M3x30,2,pcs\n3,bolt_M3x35,2,pcs\n")})
-    d = compare(old, new)
+    d = compare(with_digests(old), with_digests(new))
     assert d.bom == {"added": [{"item": "bolt_M3x30", "quantity": 2}],
                      "removed": [{"item": "bolt_M3x40", "quantity": 2}],
                      "changed": [{"item": "element_a6mm", "before": 4, "after": 3}]}
@@ -140,7 +186,17 @@ def test_a_dies_bill_of_materials_is_read_by_its_own_columns(tmp_path):
     listed = {"files": [{"path": "bom.csv", "kind": "bom-csv", "sha256": "x"}]}
     old = write_export(tmp_path / "old", listed, {"bom.csv": "item,qty\ndie,1\nresistor,4\n"})
     new = write_export(tmp_path / "new", listed, {"bom.csv": "item,qty\ndie,1\nresistor,2\n"})
-    assert compare(old, new).bom["changed"] == [{"item": "resistor", "before": 4, "after": 2}]
+    assert compare(with_digests(old), with_digests(new)).bom["changed"] == [
+        {"item": "resistor", "before": 4, "after": 2}]
+
+
+def test_a_bill_of_materials_other_than_the_exports_is_refused(tmp_path):
+    listed = {"files": [{"path": "bom.csv", "kind": "bom-csv", "sha256": "x"}]}
+    old = with_digests(write_export(tmp_path / "old", listed, {"bom.csv": "item,qty\ndie,1\n"}))
+    new = with_digests(write_export(tmp_path / "new", listed, {"bom.csv": "item,qty\ndie,2\n"}))
+    (new / "bom.csv").write_bytes(b"\x00\xff garbage")  # after the export
+    with pytest.raises(DesignError, match="bom.csv is not the file the export wrote"):
+        compare(old, new)
 
 
 SVG = ('<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="20mm" '
@@ -170,10 +226,26 @@ def test_a_second_diff_into_a_folder_replaces_the_first_ones_pictures(tmp_path, 
     record = json.loads((out / DIFF_RECORD).read_text(encoding="utf-8"))
     assert record["files"] == ["b_overlay.png", "b_side_by_side.png"]
     assert record["new"] == str(b_moved)
-    # no change: the folder is left empty, holding no earlier comparison's pictures
+    # no change: no picture, and the record (listing none) so the folder is known next time
     assert cli.main(["diff", str(base), str(base), "--out", str(out), "--quiet"]) == 0
-    assert list(out.iterdir()) == []
+    assert [p.name for p in out.iterdir()] == [DIFF_RECORD]
+    assert json.loads((out / DIFF_RECORD).read_text(encoding="utf-8"))["files"] == []
+    assert cli.main(["diff", str(base), str(a_moved), "--out", str(out), "--quiet"]) == 1
     capsys.readouterr()
+
+
+def test_a_folder_without_a_record_is_refused_saying_so(tmp_path, capsys):
+    base = _sheet_export(tmp_path / "base", {"a": 5})
+    moved = _sheet_export(tmp_path / "moved", {"a": 30})
+    out = tmp_path / "pictures"
+    out.mkdir()
+    (out / "assembly_overlay.png").write_bytes(b"an older diff's")
+    code = cli.main(["diff", str(base), str(moved), "--out", str(out), "--json"])
+    message = json.loads(capsys.readouterr().out)["error"]["message"]
+    assert code == 2 and "no diff wrote" not in message
+    assert f"holds no {DIFF_RECORD}" in message and "assembly_overlay.png" in message
+    assert "empty it, or name another folder" in message
+    assert [p.name for p in out.iterdir()] == ["assembly_overlay.png"]
 
 
 def test_a_folder_holding_files_no_diff_wrote_is_refused_and_kept(tmp_path, capsys):

@@ -14,6 +14,7 @@ import pytest
 from tactcad.cli import main
 from tactcad.design.array_plan import load_design, read_toml
 from tactcad.errors import DesignError
+from tactcad.vocabulary.schema import plain_reason
 from tactcad.mechanics.correction import CorrectionRangeWarning
 from tactcad.studies.inverse_design import (KEEP_WEB_ROOM, InverseDesignError, Targets, web_pool, design_for_targets,
                                        quotes_not_its_own,
@@ -482,7 +483,8 @@ def test_a_reason_kept_from_the_base_quotes_no_value_the_new_design_does_not_vou
         "values this design does not have")
     assert not any(re.search(r"\b2 x 3 mm|\b10 mm|\b8 mm", text) for text in why.values()
                    if text.startswith("Kept from the base design"))
-    assert why["clamp.bolt_spacing_mm"] == "Two bolts 6 mm apart centred on the clamped base."
+    assert plain_reason(why["clamp.bolt_spacing_mm"]) == (  # with the value it was written for
+        "Two bolts 6 mm apart centred on the clamped base.", "6")
     for key, text in why.items():  # every kept reason quotes only its own value
         if not text.startswith(("Kept from the base design", "tactcad design", "Raised to")):
             assert quotes_not_its_own(key, text, read_toml(tmp_path / "face.toml", "d")) == [], key

@@ -23,7 +23,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "an overlay (old red, new blue) and a "
                     "side-by-side PNG of every changed sheet (unchanged sheets are not rendered), "
                     "listed in the folder's diff.json: a later diff into the folder replaces "
-                    "them, and a folder holding files no diff wrote is refused. "
+                    "them (a diff finding no change writes diff.json listing none), and a folder "
+                    "holding files its diff.json does not list, or no diff.json, is refused. "
                     "A design file (.toml) is exported to a temporary folder first, through the "
                     "store of finished jobs. Exit 0: nothing changed; 1: something changed; "
                     "2: bad input.")

@@ -262,6 +262,9 @@ class Plan:
     #: catalogue's for the rated force
     rigs_force_gauge: Any = None
     raw: Mapping[str, Any] = field(repr=False, compare=False, hash=False, default_factory=dict)
+    #: The ``[material]`` keys ``raw`` holds from the grade, not from the file
+    #: (:func:`grade_filled`): the manifest's ``stated`` leaves them out.
+    from_grade: tuple[str, ...] = field(default=(), repr=False, compare=False, hash=False)
 
     def element(self, number: int) -> ElementSlot:
         """The slot of element ``number`` (1-based, paper numbering).
@@ -1009,6 +1012,23 @@ def with_grade_defaults(data: Mapping[str, Any]) -> Mapping[str, Any]:
     return {**data, "material": {**mat, **filled}} if filled else data
 
 
+def grade_filled(data: Mapping[str, Any]) -> tuple[str, ...]:
+    """The ``[material]`` keys :func:`with_grade_defaults` takes from the grade because the
+    file leaves them out (``youngs_modulus_MPa`` in MPa, ``poisson_ratio``).
+
+    Args:
+        data: the design file's tables, as read.
+
+    Returns:
+        The keys, in the material table's order after its own ones (empty where the file
+        states both or names no library grade).
+    """
+    mat = data.get("material") if isinstance(data, Mapping) else None
+    if not isinstance(mat, Mapping):
+        return ()
+    return tuple(k for k in with_grade_defaults(data)["material"] if k not in mat)
+
+
 def shaping_tables(data: Mapping[str, Any]) -> dict[str, Any]:
     """The design's tables less ``[files]``: where the rigs and scenes files
     lie shapes no part (their contents are hashed on their own)."""
@@ -1046,6 +1066,7 @@ def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
     the elements, spacers, clamp plates and bolt pattern, each derived
     dimension with its reason."""
     p = Problems()
+    from_grade = grade_filled(data)
     data = with_grade_defaults(data)
     leg = clamp_leg(d)
     holes = bolt_holes(d, leg.value)
@@ -1069,7 +1090,7 @@ def derive_plan(d: DesignFile, data: Mapping[str, Any], source: str) -> Plan:
         references=unit_references(d)[0], references_reason=unit_references(d)[1],
         pairing=pairing_of(d),
         assumptions=read_assumptions(data, DesignFile, p, "element.notch_radius_mm"),
-        raw=copy_tables(dict(data)),
+        raw=copy_tables(dict(data)), from_grade=from_grade,
     )
 
 

@@ -33,7 +33,7 @@ from tactcad.design.array_plan import (MIN_ARM_STEP_MM, MIN_FASTENER_GAP_MM, MIN
                                        check_in_use, check_web_tolerance_held, design_hash,
                                        EdmRules, edm_rules, in_use_tables, pairing_of,
                                        shaping_tables, unit_references,
-                                       with_grade_defaults, _grade_error,
+                                       with_grade_defaults, grade_filled, _grade_error,
                                        refuse_grade)
 from tactcad.design.bom_section import BomSection
 from tactcad.design.readout_section import ReadoutSection, check_readout
@@ -604,6 +604,7 @@ def validate_tables(data: Mapping[str, Any], file: str = "") -> tuple[CombTables
 def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
     """The comb's plan of a design that passed :func:`validate_tables`."""
     p = Problems()
+    from_grade = grade_filled(data)
     data = with_grade_defaults(data)
     sheets = comb_sheets(d)
     refs, why = unit_references(d)
@@ -618,7 +619,7 @@ def derive_plan(d: CombTables, data: Mapping[str, Any], source: str) -> Plan:
         derived=derived_values(d), references=refs, references_reason=why, pairing=pairing_of(d),
         assumptions=read_assumptions(data, CombFile, p, "comb.post_length_mm"),
         construction="monolithic-comb", comb=comb_geometry(d, sheets), hard_stops=hard_stops(d, sheets),
-        raw=copy_tables(dict(data)))
+        raw=copy_tables(dict(data)), from_grade=from_grade)
 
 
 def sheet_placement(plan: Plan, row: int) -> Placement:

@@ -288,8 +288,9 @@ UNSTATED_TABLES = ("assumptions", "files")
 
 def stated_section(plan: Plan) -> dict[str, Any]:
     """The values the design file states, by dotted key (``comb.web_thicknesses_mm``), as
-    the plan read them (a material grade's E and nu where the file leaves them out), so
-    ``tactcad diff`` names the design values that were edited, as a die's ``[die]`` keys.
+    the plan read them, so ``tactcad diff`` names the design values that were edited, as a
+    die's ``[die]`` keys. A material grade's E and nu where the file leaves them out are not
+    stated (:attr:`Plan.from_grade`): ``material.grade`` names that change.
 
     Args:
         plan: the validated design (its ``raw`` tables).
@@ -297,9 +298,11 @@ def stated_section(plan: Plan) -> dict[str, Any]:
     Returns:
         {dotted key: value}: numbers, texts and lists as in the file (units as the key's
         name says: mm, N, MPa, N/mm ...), tables flattened, other values as text;
-        :data:`UNSTATED_TABLES` left out.
+        :data:`UNSTATED_TABLES` and the grade's values left out.
     """
-    return flat_tables({k: v for k, v in plan.raw.items() if k not in UNSTATED_TABLES})
+    grade = {f"material.{k}" for k in getattr(plan, "from_grade", ())}
+    stated = flat_tables({k: v for k, v in plan.raw.items() if k not in UNSTATED_TABLES})
+    return {k: v for k, v in stated.items() if k not in grade}
 
 
 def flat_tables(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:

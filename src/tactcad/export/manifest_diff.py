@@ -169,6 +169,8 @@ class Diff:
     sheets: list = field(default_factory=list)
     bom: dict = field(default_factory=dict)  # added, removed, changed (bom.csv's items)
     files: dict = field(default_factory=dict)  # changed, added, removed (paths)
+    #: (older, newer) product where the two exports are of different products, else None
+    products: tuple | None = None
 
     @property
     def changed(self) -> bool:
@@ -187,7 +189,7 @@ class Diff:
 
     def lines(self) -> list[str]:
         """The report as text, one finding a line."""
-        out = []
+        out = [products_line(*self.products)] if self.products else []
         for name in self.parts.get("added", []):
             out.append(f"part added    {name}")
         for name in self.parts.get("removed", []):
@@ -338,8 +340,26 @@ def row_words(record: Mapping[str, Any]) -> str:
     return f"row {record['row']}" + (f" ({role})" if role else "")
 
 
+def presence_word(changes: Mapping[str, Mapping]) -> str | None:
+    """"added" or "removed" for a record only one export has (its ``present`` change),
+    else None.
+
+    Args:
+        changes: a record's changes ({field: {"before", "after"}}).
+
+    Returns:
+        The word, or None where both exports have the record.
+    """
+    present = changes.get("present")
+    if not isinstance(present, Mapping):
+        return None
+    return "added" if present.get("after") else "removed"
+
+
 def _fields_text(changes: Mapping[str, Mapping], units: Mapping[str, str] = ELEMENT_FIELDS
                  ) -> str:
+    if (word := presence_word(changes)) is not None:
+        return word
     parts = []
     for k, ch in changes.items():
         unit = units.get(k, "")
@@ -355,6 +375,8 @@ def _requirement_text(changes: Mapping[str, Mapping]) -> str:
             return f"{100 * v:+.3g} %"
         return _value(v)
 
+    if (word := presence_word(changes)) is not None:
+        return word
     return ", ".join(f"{k} {shown(k, ch['before'])} -> {shown(k, ch['after'])}"
                      for k, ch in changes.items())
 
@@ -407,6 +429,35 @@ def compare(old_dir: str | Path, new_dir: str | Path) -> Diff:
     diff.derived = [d for d in changed if not _is_stated(d["name"])]
     diff.sheets = _sheets(old, new, old_files, new_files)
     diff.bom = _bom(read_bom(old_dir, old_files), read_bom(new_dir, new_files))
+    return only_shared(diff, old.get("product"), new.get("product"))
+
+
+def products_line(old: Any, new: Any) -> str:
+    """The line saying two exports are of different products (named as their manifests
+    name them), said once at the top of the report."""
+    return (f"products      the two exports are of different products ({old} -> {new}): "
+            "only what both record is compared")
+
+
+def only_shared(diff: Diff, old: Any, new: Any) -> Diff:
+    """``diff`` where the manifests name different products (``old``, ``new``): its
+    elements, rows, requirements and stated values only one export records left out (one
+    product's records are not the other's removed or added) and the products noted;
+    ``diff`` itself where they are the same or either names none.
+
+    Args:
+        diff: the comparison. old, new: the manifests' ``product``.
+
+    Returns:
+        The comparison (the same object, changed in place).
+    """
+    if not old or not new or old == new:
+        return diff
+    diff.products = (old, new)
+    diff.elements = [e for e in diff.elements if presence_word(e["changes"]) is None]
+    diff.rows = [r for r in diff.rows if presence_word(r["changes"]) is None]
+    diff.requirements = [r for r in diff.requirements if presence_word(r["changes"]) is None]
+    diff.stated = [d for d in diff.stated if d["before"] is not None and d["after"] is not None]
     return diff
 
 
@@ -433,14 +484,17 @@ def read_bom(folder: str | Path, files: Mapping[str, dict]) -> dict[str, Any] | 
     item's rows summed; None when its manifest lists no ``bom.csv`` or it cannot be read.
 
     Raises:
-        DesignError: a ``bom.csv`` path leading out of the export.
+        DesignError: a ``bom.csv`` path leading out of the export, or one whose sha256 is
+            not the one the manifest records of it (:func:`bom_unchanged`).
     """
     import csv
 
     if BOM_FILE not in files:
         return None
+    path = _inside(folder, BOM_FILE)
+    bom_unchanged(path, files[BOM_FILE])
     try:
-        text = _inside(folder, BOM_FILE).read_text(encoding="utf-8-sig")
+        text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError):
         return None
     rows = list(csv.DictReader(text.splitlines()))
@@ -457,6 +511,31 @@ def read_bom(folder: str | Path, files: Mapping[str, dict]) -> dict[str, Any] | 
         out[r[item]] = n if was is None else (
             was + n if isinstance(was, (int, float)) and isinstance(n, (int, float)) else n)
     return out
+
+
+def bom_unchanged(path: Path, record: Mapping[str, Any]) -> None:
+    """Refuse an export's ``bom.csv`` that is not the file its manifest records: its sha256
+    (hex) differs from the manifest's (edited or damaged since the export). A record
+    without a digest, or a file that cannot be read, is let through.
+
+    Args:
+        path: the export's ``bom.csv``. record: the manifest's record of it.
+
+    Raises:
+        DesignError: the digests differ.
+    """
+    from tactcad.atomic import file_sha256
+
+    digest = record.get("sha256") if isinstance(record, Mapping) else None
+    try:
+        actual = file_sha256(path) if isinstance(digest, str) else None
+    except OSError:
+        return
+    if actual is not None and actual != digest:
+        raise DesignError(f"{MANIFEST}: files", str(path),
+                          f"the {BOM_FILE} whose sha256 the manifest records",
+                          f"{path} is not the file the export wrote (edited or damaged since); "
+                          "export again, or compare another export")
 
 
 def _number(text: Any) -> Any:
@@ -707,10 +786,34 @@ def earlier_diff_files(out_dir: str | Path) -> set[str]:
     if foreign:
         raise DesignError("--out", str(out), "a new or empty folder, or one holding an "
                           f"earlier diff's pictures (listed in its {DIFF_RECORD}, replaced)",
-                          f"{out} holds files no diff wrote ({', '.join(foreign[:5])}"
-                          f"{' ...' if len(foreign) > 5 else ''}): this comparison's pictures "
-                          "would be mixed with them; name another folder")
+                          unknown_files_reason(out, foreign, listed is not None,
+                                               DIFF_RECORD in present))
     return ours & present
+
+
+def unknown_files_reason(out: Path, foreign: list[str], recorded: bool,
+                         record_present: bool) -> str:
+    """Why a diff's ``--out`` folder is refused, and what to do.
+
+    Args:
+        out: the folder. foreign: the names in it no diff record lists (sorted).
+        recorded: True where the folder holds a :data:`DIFF_RECORD` a diff wrote.
+        record_present: True where it holds a file of that name at all.
+
+    Returns:
+        The reason: the files a diff's record does not list where it has one, else that it
+        has none a diff wrote (so its files, an older diff's pictures say, cannot be told
+        from a lab's); and to empty the folder or name another.
+    """
+    names = f"{', '.join(foreign[:5])}{' ...' if len(foreign) > 5 else ''}"
+    todo = "empty it, or name another folder"
+    if recorded:
+        return (f"{out} holds files its {DIFF_RECORD} does not list ({names}): this "
+                f"comparison's pictures would be mixed with them; {todo}")
+    which = (f"a {DIFF_RECORD} no diff wrote" if record_present
+             else f"no {DIFF_RECORD} (the record a diff keeps of the pictures it wrote)")
+    return (f"{out} holds {which}, so its files ({names}) cannot be told from a lab's "
+            f"and none is deleted; {todo}")
 
 
 def _recorded(record: Path) -> set[str] | None:
@@ -745,17 +848,23 @@ def clear_earlier_diff(out_dir: str | Path) -> list[str]:
     return names
 
 
-def write_diff_record(diff: Diff, written: list[Path], out_dir: str | Path) -> Path | None:
+def write_diff_record(diff: Diff, written: list[Path], out_dir: str | Path) -> Path:
     """Write :data:`DIFF_RECORD` into ``out_dir``: the comparison (``old``, ``new``) and the
-    pictures it wrote there (``files``, names); none when it wrote no picture.
+    pictures it wrote there (``files``, names; empty where nothing changed, so a later diff
+    still knows the folder as a diff's).
+
+    Args:
+        diff: the comparison. written: the pictures it wrote. out_dir: the ``--out`` folder.
+
+    Returns:
+        The record's path.
 
     Raises:
         OSError: the record cannot be written.
     """
     from tactcad.atomic import write_bytes_atomic
 
-    if not written:
-        return None
+    Path(out_dir).mkdir(parents=True, exist_ok=True)
     record = {"written_by": DIFF_WRITER, "old": diff.old, "new": diff.new,
               "files": sorted(Path(p).name for p in written)}
     return write_bytes_atomic(Path(out_dir) / DIFF_RECORD,

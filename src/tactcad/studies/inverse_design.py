@@ -68,7 +68,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from tactcad.vocabulary.schema import copy_tables, reason_as_read
+from tactcad.vocabulary.schema import copy_tables, plain_reason, reason_as_read
 from tactcad.design.array_plan import (ARM_RANGE_MM, BOLTS, DEFAULT_DESIGN, MIN_BASE_BELOW_ARM_MM,
                                        MIN_FASTENER_GAP_MM, MIN_LIGAMENT_MM, WEB_RANGE_MM, Plan,
                                        element_process_limits, plan_from_dict)
@@ -1094,15 +1094,42 @@ def neutral_assumptions(data: Mapping[str, Any], base_name: str) -> dict[str, st
     from tactcad.design.requirements_section import cites_paper
 
     named = "" if cites_paper(data) or _mentions_paper(base_name) else f" {base_name}"
-    out = {}
-    for key, why in dict(data.get("assumptions", {})).items():
-        text = _KEPT_FROM.sub("", str(why)) or str(why)
-        if text.startswith("Not in the paper."):
-            text = text[len("Not in the paper."):].strip() or text
-        if _mentions_paper(text):
-            text = f"Kept from the base design{named}, where it is an assumption."
-        out[key] = text
-    return out
+    return {key: with_record(neutral_reason(words, named), written)
+            for key, (words, written) in ((key, plain_reason(str(why))) for key, why
+                                          in dict(data.get("assumptions", {})).items())}
+
+
+def neutral_reason(words: str, named: str) -> str:
+    """One reason of the base design, without its record of the value
+    (:func:`tactcad.vocabulary.schema.plain_reason`), as a new design carries it
+    (:func:`neutral_assumptions`).
+
+    Args:
+        words: the reason's words. named: " " and the base's name, or "" (not named).
+
+    Returns:
+        The reason's own argument, or a pointer to the base design where it has none of
+        its own or cites the paper.
+    """
+    pointer = f"Kept from the base design{named}, where it is an assumption."
+    text = _KEPT_FROM.sub("", words) or words or pointer
+    if text.startswith("Not in the paper."):
+        text = text[len("Not in the paper."):].strip() or text
+    return pointer if _mentions_paper(text) else text
+
+
+def with_record(words: str, written: str | None) -> str:
+    """A reason's words with the base's record of the value it was written for put back
+    (:data:`tactcad.vocabulary.schema.WRITTEN_FOR`), so :func:`with_base_named` can tell
+    whether it still applies; the words alone where there was none.
+
+    Args:
+        words: the reason's words. written: the recorded value text, or None.
+
+    Returns:
+        The reason's text.
+    """
+    return words if written is None else f"{words} [written for {written}]"
 
 
 #: What a reason quotes of its design: dimensions ("1.5 mm", "2 x 3 mm") and bolt sizes ("M2").

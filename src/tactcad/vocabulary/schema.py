@@ -693,8 +693,9 @@ def with_counts(problems: Problems, data: Mapping[str, Any]) -> None:
 
 #: How ``tactcad design`` records, at the end of each reason under ``[assumptions]``, the
 #: value the reason was written for (``... by the web rule [written for 0.2]``); a file
-#: without it (written before, or by hand) reads as it always did.
-WRITTEN_FOR = re.compile(r" \[written for (.*)\]\Z", re.DOTALL)
+#: without it (written before, or by hand) reads as it always did. It matches the last
+#: record only: its value holds no further ``[written for`` (a list's brackets may be in it).
+WRITTEN_FOR = re.compile(r"\s*\[written for ((?:(?!\[written for ).)*)\]\Z", re.DOTALL)
 
 _KEY_PARTS = re.compile(r"^([a-z_]+)\.([A-Za-z0-9_]+)(?:\[(\d+)\])?$")
 
@@ -743,14 +744,23 @@ def keyed_value(data: Mapping[str, Any], key: str) -> Any:
 def plain_reason(reason: str) -> tuple[str, str | None]:
     """(a reason without its record of the value, that record or None where it has none).
 
+    The value is the last record's (:data:`WRITTEN_FOR`); records before it at the end of
+    the reason (a file written twice over, or mangled by hand) are dropped from the words.
+
     Args:
         reason: a reason as the file gives it.
 
     Returns:
-        The reason's words and the value text it was written for.
+        The reason's words (empty where the reason is only records) and the value text it
+        was written for.
     """
     m = WRITTEN_FOR.search(reason)
-    return (reason, None) if m is None else (reason[:m.start()].rstrip(), m.group(1))
+    if m is None:
+        return reason, None
+    words = reason[:m.start()]
+    while (earlier := WRITTEN_FOR.search(words)) is not None:
+        words = words[:earlier.start()]
+    return words.rstrip(), m.group(1)
 
 
 def reason_as_read(key: str, reason: str, data: Mapping[str, Any]) -> tuple[str, bool]:
