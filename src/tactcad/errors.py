@@ -214,6 +214,11 @@ class LeftoverWarning(UserWarning):
     """Files of an earlier or failed run that could not be removed (named in the message)."""
 
 
+class FreecadFailedWarning(UserWarning):
+    """FreeCAD (``freecadcmd``) failed: the export is written without its FreeCAD review
+    files (the message names FreeCAD's exit and the file holding its output)."""
+
+
 class HandEditedWarning(UserWarning):
     """Files of an earlier export changed by hand since it was written, which a partial
     export keeps as they are but no longer lists as the export's (named in the message)."""

@@ -191,15 +191,92 @@ def signal_dispositions_kept() -> Iterator[None]:
             sigaction(int(number), action, None)
 
 
+#: Programs started by this process (``subprocess.Popen``, :func:`popen_held`) not yet
+#: known to be reaped: :func:`end_child_processes` ends and reaps those still running.
+_programs: list = []
+
+
+def popen_held(args: list[str], **kwargs):
+    """``subprocess.Popen(args, **kwargs)`` within :func:`stop_signals_held` (the
+    program's stop signals not blocked), noted for :func:`end_child_processes`; a stop
+    that arrived meanwhile (raised as the hold ends) ends and reaps the program before it
+    is raised on, so no caller is left with a child it never got.
+
+    Args:
+        args: the program and its arguments.
+        kwargs: ``subprocess.Popen``'s other arguments.
+
+    Returns:
+        The ``subprocess.Popen``.
+
+    Raises:
+        KeyboardInterrupt: a stop signal arrived while the program started.
+        OSError: the program cannot be started.
+    """
+    import subprocess
+
+    proc = None
+    try:
+        with stop_signals_held(block_in_children=False):  # never a Popen half made
+            proc = subprocess.Popen(args, **kwargs)
+            _programs[:] = [p for p in _programs if p.returncode is None] + [proc]
+    except BaseException:
+        if proc is not None:
+            end_program(proc)
+        raise
+    return proc
+
+
+def end_program(proc, wait_s: float = 1.0) -> None:
+    """End a started program and reap it: SIGTERM if it still runs, up to ``wait_s``
+    seconds to end, then SIGKILL; a child never reaped stays a zombie, re-parented to a
+    PID 1 that may never reap it (a container's).
+
+    Args:
+        proc: the ``subprocess.Popen``.
+        wait_s: longest wait after SIGTERM, s.
+    """
+    import subprocess
+
+    if proc.poll() is None:
+        try:
+            proc.terminate()
+            proc.wait(timeout=wait_s)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        except OSError:  # ended and reaped meanwhile
+            pass
+
+
+def end_programs(wait_s: float = 1.0) -> None:
+    """End and reap every program started with :func:`popen_held` still running
+    (:func:`end_program`), and forget them all.
+
+    Args:
+        wait_s: longest wait for each after SIGTERM, s.
+    """
+    for proc in list(_programs):
+        end_program(proc, wait_s)
+    _programs.clear()
+
+
 def end_child_processes(wait_s: float = 1.0) -> None:
     """Kill every ``multiprocessing`` child of this process still running and
     reap it (each waited for at most ``wait_s`` seconds): a process that
     ends must not leave one, and ``multiprocessing``'s exit would wait for
     it for as long as it runs (a child never sent its work waits for ever).
     The drawing worker and the page's server hold nothing that needs a
-    goodbye: their parent has the files and the sockets."""
+    goodbye: their parent has the files and the sockets. The programs started
+    with :func:`popen_held` (FreeCAD) still running are ended and reaped too
+    (:func:`end_program`).
+
+    Args:
+        wait_s: longest wait for each child, s.
+    """
     import sys
 
+    end_programs(wait_s)
     if "multiprocessing" not in sys.modules:  # none was started
         return
     children = sys.modules["multiprocessing"].active_children()

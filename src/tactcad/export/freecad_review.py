@@ -15,7 +15,9 @@ FreeCAD runs its own Python, so the document is built by
 ``freecadcmd`` subprocess; its main window is opened off screen
 (``QT_QPA_PLATFORM=offscreen``) because colours live in the view providers,
 which exist only with a GUI. Without ``freecadcmd`` the files are skipped
-with a logged note, so an export works without FreeCAD.
+with a logged note, so an export works without FreeCAD; a ``freecadcmd`` that
+ends without its result costs the export these files only (one warning names its
+exit and the file keeping its output, :func:`skipped_review_files`).
 
 Reproducibility: FreeCAD stamps each save with creation and modification
 dates and a random document UUID; :func:`normalise_fcstd` replaces them with
@@ -49,7 +51,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from tactcad.atomic import write_bytes_atomic
-from tactcad.stopping import stop_signals_held
+from tactcad.stopping import popen_held
 from tactcad.assembly.z_up import Z_UP_MATRIX
 
 SCRIPT = Path(__file__).with_name("freecad_review_script.py")
@@ -149,6 +151,19 @@ def _job(a: ReviewAssembly, staging: Path, folder: Path) -> dict:
             "root_matrix": Z_UP_MATRIX, "parts": parts, "groups": groups}
 
 
+class FreecadFailed(RuntimeError):
+    """``freecadcmd`` ended without writing its result.
+
+    Attributes:
+        returncode: its exit status (negative: ended by that signal).
+        output: what it wrote on stdout and stderr.
+    """
+
+    def __init__(self, returncode: int, output: str):
+        super().__init__(f"freecadcmd exited {returncode} without a result:\n{output[-4000:]}")
+        self.returncode, self.output = returncode, output
+
+
 class FreecadRun:
     """``script`` running under ``freecadcmd`` with ``payload`` (JSON) in
     ``$TACTCAD_FC_IN``; :meth:`result` waits for the JSON the script writes
@@ -171,22 +186,24 @@ class FreecadRun:
                    HOME=tmp, QT_QPA_PLATFORM="offscreen")  # FreeCAD's user config goes to HOME
         env.pop("PYTHONPATH", None)
         env.pop("PYTHONHOME", None)
-        with stop_signals_held(block_in_children=False):  # never a Popen half made
-            self._proc = subprocess.Popen([exe, str(script)], env=env, cwd=tmp, text=True,
-                                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        try:
+            self._proc = popen_held([exe, str(script)], env=env, cwd=tmp, text=True,
+                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        except BaseException:  # not started, or ended again by a stop that came meanwhile
+            self._tmp.cleanup()
+            raise
 
     def result(self) -> dict:
         """The script's JSON result.
 
         Raises:
-            RuntimeError: FreeCAD wrote no result (its output is in the message).
+            FreecadFailed: FreeCAD wrote no result (its exit status and output with it).
             subprocess.TimeoutExpired: FreeCAD ran longer than the timeout.
         """
         try:
             stdout, stderr = self._proc.communicate(timeout=self._timeout)
             if not self._out.exists():
-                raise RuntimeError(f"freecadcmd exited {self._proc.returncode} without a result:\n"
-                                   f"{stdout[-2000:]}\n{stderr[-2000:]}")
+                raise FreecadFailed(self._proc.returncode, f"{stdout}\n{stderr}")
             return json.loads(self._out.read_text())
         finally:
             self.cancel()
@@ -220,10 +237,14 @@ class FreecadServer:
         env = dict(os.environ, TACTCAD_FC_SERVE="1", HOME=tmp, QT_QPA_PLATFORM="offscreen")
         env.pop("PYTHONPATH", None)
         env.pop("PYTHONHOME", None)
-        with stop_signals_held(block_in_children=False):  # never a Popen half made
-            self._proc = subprocess.Popen([exe, str(SCRIPT)], env=env, cwd=tmp, text=True,
-                                          stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                          stderr=self._log)
+        try:
+            self._proc = popen_held([exe, str(SCRIPT)], env=env, cwd=tmp, text=True,
+                                    stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                    stderr=self._log)
+        except BaseException:  # not started, or ended again by a stop that came meanwhile
+            self._log.close()
+            self._tmp.cleanup()
+            raise
         self._count = self._done = 0  # requests sent, and answered
         self._lines: queue.Queue = queue.Queue()  # its stdout, read as it comes (never blocks it)
         threading.Thread(target=self._read, daemon=True).start()
@@ -567,11 +588,14 @@ def start_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
 
 
 class PendingReview:
-    """Review files being written by FreeCAD in its own process."""
+    """Review files being written by FreeCAD in its own process. ``keep`` is False once
+    FreeCAD failed (:meth:`result`): the run keeps no store entry of its review files, so
+    the next one asks FreeCAD again."""
 
     def __init__(self, staging: Path, assemblies: tuple[ReviewAssembly, ...],
                  log: Callable[[str], None]):
         self.staging, self.assemblies, self.log = staging, assemblies, log
+        self.keep = True
         self._run = None
         self._breps = None
         if not assemblies:
@@ -596,6 +620,10 @@ class PendingReview:
             return []
         try:
             result = self._run.result()
+        except FreecadFailed as exc:  # the other files are good: the export goes on without
+            self.keep = False
+            skipped_review_files(self.staging, self.assemblies, exc)
+            return []
         finally:
             self.cancel()
         records = []
@@ -615,6 +643,59 @@ class PendingReview:
         self.log(f"  wrote {len(records)} FreeCAD review files in review/ "
                  f"(FreeCAD {'.'.join(result['freecad_version'])}, colours: {result['gui']})")
         return records
+
+
+def freecad_output_file(exc: FreecadFailed) -> Path:
+    """Keep FreeCAD's output of a failed run in a file of its own in the temporary
+    folder (``tactcad-freecad-*.log``), where the lab can read it after the run.
+
+    Args:
+        exc: the failure, with its exit status and output.
+
+    Returns:
+        The file's path.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
+    fd, name = tempfile.mkstemp(prefix="tactcad-freecad-", suffix=".log")
+    with os.fdopen(fd, "w") as f:
+        f.write(f"freecadcmd ({freecadcmd()}) exited {exc.returncode} without a result; "
+                f"its output:\n{exc.output}")
+    return Path(name)
+
+
+def skipped_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
+                         exc: FreecadFailed) -> None:
+    """An export without its FreeCAD review files, FreeCAD having failed: any it wrote
+    before it failed removed from ``staging`` (a set whole or none; ``review/`` too when
+    that leaves it empty), its output kept (:func:`freecad_output_file`) and one
+    :class:`~tactcad.errors.FreecadFailedWarning` naming its exit and that file.
+
+    Args:
+        staging: the run's staging folder.
+        assemblies: the review files asked for.
+        exc: FreeCAD's failure.
+    """
+    import warnings
+
+    from tactcad.errors import FreecadFailedWarning
+
+    for a in assemblies:
+        (staging / review_fcstd_name(a.name)).unlink(missing_ok=True)
+    try:
+        (staging / "review").rmdir()
+    except OSError:  # other review files there (the review page), or none made
+        pass
+    try:
+        seen = f"its output is in {freecad_output_file(exc)}"
+    except OSError as err:  # no temporary folder to write to: the output's end, in the line
+        seen = f"its output could not be kept ({err.strerror}), it ends: " + " | ".join(
+            exc.output.strip().splitlines()[-3:])
+    warnings.warn(f"review/*.FCStd not written: freecadcmd exited {exc.returncode} without a "
+                  f"result ({seen}); the export's other files are written and manifest.json "
+                  "does not list the review files; the next export runs FreeCAD again",
+                  FreecadFailedWarning, stacklevel=2)
 
 
 def write_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],

@@ -98,7 +98,8 @@ class Job:
     after: tuple[str, ...] = ()  # jobs whose files this one reads
     #: for work done by another program: ``start(run)`` launches it and returns
     #: a handle with ``result() -> records`` and ``cancel()``; the run goes on
-    #: with the other jobs meanwhile (both cores busy) and collects it at the end
+    #: with the other jobs meanwhile (both cores busy) and collects it at the end;
+    #: a handle whose ``keep`` is False after ``result()`` is not kept in the store
     start: Callable[[Run], Any] | None = None
     #: for such a job: ``ahead()`` starts that program's start-up before this process
     #: imports the CAD kernel (the second core is idle then), returning a function that

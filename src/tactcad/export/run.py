@@ -123,35 +123,15 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
     unclaimed: list[Callable[[], None]] = []  # ends what was started ahead and never taken
     # name -> the run of that job's prepare in a process of its own (a fork only)
     preparing: dict[str, Preparing] = {}
-    if session is not None and planner is not None:
-        handed = worker_jobs(todo, done)
-        if handed:
-            worker = session.begin(run, planner)
-    else:
-        handed = worker_jobs(todo, done) if can_fork() else []
-        # work that reads no file (the review page's facts), done in a process forked
-        # before this one imports the kernel, where the store carries it back
-        if can_fork() and prepared_there(run):
-            preparing = _prepared_apart(run, [job for job in todo
-                                              if job.prepare is not None and not job.worker])
-        if can_fork():  # another program's start-up while this process imports the kernel
-            unclaimed = [job.ahead() for job in todo if job.start is not None
-                         and job.ahead is not None]
-        if len(handed) > 1:
-            try:
-                worker = Worker(run, handed, kernel=any(job.needs for job in todo))
-            except OSError:  # no process to be had (memory, process limit): all of it here
-                pass
-    if worker is None:
-        handed = []
     by_name = {job.name: job for job in todo}
     futures = {}
     started = {}
 
-    def finished(name: str, records: list[dict]) -> None:
-        """``name`` is done: its records noted and its files kept in the store."""
+    def finished(name: str, records: list[dict], keep: bool = True) -> None:
+        """``name`` is done: its records noted and, if ``keep``, its files kept in the store."""
         done[name] = records
-        store.keep(by_name[name].key, run.staging, records)
+        if keep:
+            store.keep(by_name[name].key, run.staging, records)
 
     def collect_reads(job: Job) -> None:
         """Collect the worker's jobs whose files ``job`` reads."""
@@ -172,14 +152,38 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             records = by_name[name].make(run)
         finished(name, records)
 
-    try:
+    try:  # from the first process started: a stop at any point ends each one started
+        if session is not None and planner is not None:
+            handed = worker_jobs(todo, done)
+            if handed:
+                worker = session.begin(run, planner)
+        else:
+            handed = worker_jobs(todo, done) if can_fork() else []
+            # work that reads no file (the review page's facts), done in a process forked
+            # before this one imports the kernel, where the store carries it back
+            if can_fork() and prepared_there(run):
+                preparing = _prepared_apart(run, [job for job in todo
+                                                  if job.prepare is not None and not job.worker])
+            if can_fork():  # another program's start-up while this process imports the kernel
+                for job in todo:
+                    if job.start is not None and job.ahead is not None:
+                        unclaimed.append(job.ahead())
+            if len(handed) > 1:
+                try:
+                    worker = Worker(run, handed, kernel=any(job.needs for job in todo))
+                except OSError:  # no process to be had (memory, process limit): all of it here
+                    pass
+        if worker is None:
+            handed = []
         # each of the worker's jobs is handed over as soon as its own solids are built, so
         # the worker draws while this process builds the rest (each part still built once)
         for job in handed:
             futures[job.name] = worker.submit(job, {s.name: run.parts.solid(s) for s in job.needs})
         for spec in {s.name: s for job in todo for s in job.needs}.values():
             run.parts.solid(spec)
-        started = {job.name: job.start(run) for job in todo if job.start is not None}
+        for job in todo:
+            if job.start is not None:
+                started[job.name] = job.start(run)
         here = [job for job in todo if job.start is None and job.name not in futures]
         prepared: set[str] = set(preparing)  # prepared apart: not here again
         # a worker kept across runs (tactcad watch) keeps the solids it was handed: its jobs
@@ -196,7 +200,9 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             if name not in done:
                 collect(name)
         for name, pending in started.items():
-            finished(name, pending.result())
+            # a handle whose program failed but left the run whole (FreeCAD: ``keep``
+            # False) keeps no store entry, so the next run starts that program again
+            finished(name, pending.result(), getattr(pending, "keep", True))
         if worker is not None:
             worker.close()
     finally:

@@ -1,0 +1,128 @@
+"""A FreeCAD that fails, and a run stopped as FreeCAD starts.
+
+A ``freecadcmd`` that ends without its result costs the export its FreeCAD review files
+only: the other files are written, the manifest lists what is there, one warning names
+FreeCAD's exit and the file holding its output, and no store entry is kept (the next
+export asks FreeCAD again). A stop that arrives while a program starts ends and reaps it:
+no child of the run is left running or a zombie.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+
+import psutil
+import pytest
+
+from tactcad import cli, stopping
+from tactcad.export import freecad_review
+
+
+def fake_freecadcmd(folder: Path, body: str) -> Path:
+    """A ``freecadcmd`` shell script in ``folder`` running ``body``; the folder's path.
+
+    Args:
+        folder: where the script is written (made if missing).
+        body: the script's shell lines.
+
+    Returns:
+        ``folder``, to put first on ``PATH``.
+    """
+    folder.mkdir(parents=True, exist_ok=True)
+    exe = folder / "freecadcmd"
+    exe.write_text("#!/bin/sh\n" + body + "\n")
+    exe.chmod(0o755)
+    return folder
+
+
+def children() -> set[int]:
+    """The PIDs of this process's children, running or zombies."""
+    return {c.pid for c in psutil.Process().children()}
+
+
+@pytest.mark.slow  # two exports of the review files
+def test_a_failing_freecad_leaves_the_export_whole_without_its_review_files(
+        tmp_path, monkeypatch, capsys):
+    fake = fake_freecadcmd(tmp_path / "bin", 'echo "fc said out"\necho "fc said err" >&2\nexit 3')
+    monkeypatch.setenv("PATH", f"{fake}:{os.environ['PATH']}")
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # FreeCAD's output is kept there
+    out, cache = tmp_path / "ex", tmp_path / "cache"
+    for attempt in (1, 2):  # not kept in the store: the second export runs FreeCAD again
+        assert cli.main(["export", "--cache", str(cache), "--out", str(out),
+                         "--only", "review"]) == 0
+        err = capsys.readouterr().err
+        assert "Traceback" not in err
+        lines = [line for line in err.splitlines() if "FCStd" in line]
+        assert len(lines) == 1 and "freecadcmd exited 3 without a result" in lines[0], err
+        log = Path(lines[0].split("its output is in ")[1].split(")")[0])
+        assert log.parent == tmp_path and "fc said out" in log.read_text()
+        assert "fc said err" in log.read_text()
+        log.unlink()
+        man = json.loads((out / "manifest.json").read_text())
+        assert "review/index.html" in {f["path"] for f in man["files"]}, attempt
+        assert not any(f["path"].endswith(".FCStd") for f in man["files"])
+        assert not list(out.rglob("*.FCStd"))
+
+
+@contextmanager
+def _stopped_as_held(stops: list[int] | None = None):
+    """A :func:`tactcad.stopping.stop_signals_held` during which Ctrl-C came: raised
+    as the hold ends, the program started within it already running. With ``stops``,
+    only a hold in which a child was started raises (noted in ``stops``)."""
+    before = children()
+    yield
+    if stops is None or children() - before:
+        if stops is not None:
+            stops.append(1)
+        raise KeyboardInterrupt
+
+
+@pytest.mark.slow  # an export of the review files
+def test_a_stop_as_freecad_starts_leaves_no_child_running_or_a_zombie(tmp_path, monkeypatch):
+    fake = fake_freecadcmd(tmp_path / "bin", "exec sleep 60")
+    monkeypatch.setenv("PATH", f"{fake}:{os.environ['PATH']}")
+    monkeypatch.setenv("TACTCAD_WORKERS", "0")  # FreeCAD the only child: started for its run
+    before, stops = children(), []
+    monkeypatch.setattr(stopping, "stop_signals_held", lambda **kw: _stopped_as_held(stops))
+    monkeypatch.setattr(freecad_review, "stop_signals_held",
+                        lambda **kw: _stopped_as_held(stops), raising=False)
+    try:
+        code = cli.main(["export", "--no-cache", "--quiet", "--out", str(tmp_path / "ex"),
+                         "--only", "review"])
+    except KeyboardInterrupt:
+        code = None
+    assert stops == [1] and code != 0  # stopped as FreeCAD started
+    left = children() - before
+    assert not left, [(p, psutil.Process(p).status()) for p in left]
+    assert not (tmp_path / "ex").exists()
+
+
+def test_a_program_started_as_a_stop_came_is_ended_and_reaped(monkeypatch):
+    monkeypatch.setattr(stopping, "stop_signals_held", lambda **kw: _stopped_as_held())
+    before = children()
+    with pytest.raises(KeyboardInterrupt):
+        stopping.popen_held(["sleep", "60"])
+    assert children() == before
+
+
+def test_the_programs_started_are_ended_and_reaped_at_the_end():
+    before = children()
+    proc = stopping.popen_held(["sleep", "60"])
+    done = stopping.popen_held(["true"])
+    done.wait()
+    stopping.end_programs(wait_s=5.0)
+    assert proc.returncode is not None and children() == before
+
+
+def test_a_program_ignoring_sigterm_is_killed():
+    proc = subprocess.Popen(["sh", "-c", "trap '' TERM; echo ready; while :; do sleep 0.1; done"],
+                            stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline() == "ready\n"
+    stopping.end_program(proc, wait_s=0.3)
+    proc.stdout.close()
+    assert proc.returncode == -9
