@@ -397,6 +397,11 @@ def start_freecad_ahead() -> Callable[[], None]:
     Nothing is started when FreeCAD is not installed, one is kept already
     (:func:`keep_freecad`) or one was started ahead and not yet taken.
 
+    No export job asks for it now (:class:`tactcad.export.job.Job` ``ahead``): one export
+    from an installed wheel waited on such a FreeCAD's answer after its files were written
+    (its done line never came), not understood yet; the review files are written by a
+    FreeCAD started for them, as before.
+
     Returns:
         A function ending that FreeCAD if no run took it (called when the run ends).
     """
