@@ -33,6 +33,7 @@ def site(tmp_path_factory):
     return out / "html"
 
 
+@pytest.mark.xdist_group("docs-site")  # site: made once, on one worker
 @pytest.mark.slow
 def test_site_builds_without_warnings_and_fetches_nothing(site):
     pages = sorted(site.rglob("*.html"))
@@ -44,6 +45,7 @@ def test_site_builds_without_warnings_and_fetches_nothing(site):
     assert not re.search(r"<script[^>]*mathjax", lumped, re.I)  # no MathJax, even a local one
 
 
+@pytest.mark.xdist_group("docs-site")  # site: made once, on one worker
 @pytest.mark.slow
 def test_equations_are_mathml_and_the_reference_is_generated(site):
     lumped = (site / "explanation" / "lumped-model.html").read_text(encoding="utf-8")

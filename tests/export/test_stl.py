@@ -26,6 +26,7 @@ def stl_export(tmp_path_factory):
     return out
 
 
+@pytest.mark.xdist_group("stl-export")  # stl_export: made once, on one worker
 def test_every_part_is_a_closed_mesh_of_its_volume(stl_export, project):
     specs, _ = Run(project, None).inventory  # every distinct part of the design
     manifest = json.loads((stl_export / "manifest.json").read_text(encoding="utf-8"))
@@ -37,6 +38,7 @@ def test_every_part_is_a_closed_mesh_of_its_volume(stl_export, project):
         assert mesh.volume == pytest.approx(spec.expected_volume_mm3, rel=5e-3), name
 
 
+@pytest.mark.xdist_group("stl-export")  # stl_export: made once, on one worker
 def test_a_second_run_writes_the_same_bytes(stl_export, tmp_path):
     again = tmp_path / "again"
     assert main(["export", "--design", str(DEFAULT_DESIGN), "--only", "stl", "--part",

@@ -43,3 +43,39 @@ def test_the_longest_tests_rank_first_with_or_without_their_parameters():
     docs = _Item("tests/docs/test_code_blocks.py::test_page_code_runs[how-to/other.md]")
     assert _start_rank(first) == 0 and _start_rank(parametrised) == 3
     assert _start_rank(other) == _start_rank(docs) == len(LONGEST_FIRST)
+
+
+#: (test file, module fixture) -> the xdist group its readers run in: each fixture costs
+#: seconds (a design search, a solve), and pytest-xdist makes a module fixture once on every
+#: worker that runs a test reading it, so readers spread over two workers made it twice.
+ONE_WORKER_FIXTURES = {
+    ("studies/test_design_reasons.py", "designed"): "design-reasons",
+    ("mechanics/test_fem2d.py", "extremes"): "fem2d-extremes",
+    ("mechanics/test_comb_crosstalk.py", "fem"): "comb-crosstalk-fe",
+    ("mechanics/test_die_dynamics.py", "calculix"): "die-calculix",
+    ("products/test_die_review_in_use.py", "die_page"): "die-review-page",
+    ("export/test_stl.py", "stl_export"): "stl-export",
+    ("docs/test_site.py", "site"): "docs-site",
+}
+
+
+def _test_functions(path: Path) -> dict:
+    """{name: function} of the ``test_`` functions of the test file at ``path``, imported."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(f"_groups_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return {n: f for n, f in vars(module).items() if n.startswith("test_") and callable(f)}
+
+
+def test_every_reader_of_a_costly_module_fixture_runs_in_its_group():
+    import inspect
+
+    for (path, fixture), group in ONE_WORKER_FIXTURES.items():
+        readers = {n: f for n, f in _test_functions(TESTS / path).items()
+                   if fixture in inspect.signature(f).parameters}
+        assert readers, (path, fixture)
+        for name, f in readers.items():
+            groups = [m.args[0] for m in getattr(f, "pytestmark", []) if m.name == "xdist_group"]
+            assert groups == [group], f"{path}::{name} reads {fixture}: mark it {group!r}"

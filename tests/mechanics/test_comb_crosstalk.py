@@ -144,6 +144,7 @@ def test_a_comb_level_on_a_stacked_array_is_refused_naming_the_stacks(level, mon
     assert [a["option"] for a in e.alternatives][0] == "--model stack-beam"
 
 
+@pytest.mark.xdist_group("comb-crosstalk-fe")  # fem: made once, on one worker
 def test_the_fe_answers_in_seconds_and_its_tip_matrix_is_reciprocal(fem, inputs):
     assert fem.model == "comb-fem2d" and fem.seconds < 60
     C = fem.compliance
@@ -156,6 +157,7 @@ def test_the_fe_answers_in_seconds_and_its_tip_matrix_is_reciprocal(fem, inputs)
     assert 0 < fem.crosstalk_rel < 1e-5 and 0 < fem.error_estimate_rel < 0.1
 
 
+@pytest.mark.xdist_group("comb-crosstalk-fe")  # fem: made once, on one worker
 def test_the_fes_diagonal_is_the_gauges_own_reading(fem, inputs):
     """The FE's own grid strain (the layer meshed, the width factor) and tip compliance
     against the closed form's: the same element, its post and spine added and plane
@@ -168,6 +170,7 @@ def test_the_fes_diagonal_is_the_gauges_own_reading(fem, inputs):
         np.allclose(K, inputs.stiffness_N_per_mm, rtol=0.15)
 
 
+@pytest.mark.xdist_group("comb-crosstalk-fe")  # fem: made once, on one worker
 def test_the_beam_errs_high_within_its_stated_error(fem, inputs):
     beam = estimate_comb_beam(inputs)
     assert beam.crosstalk_rel > fem.crosstalk_rel
@@ -195,6 +198,7 @@ def _coarsest(inputs):
     return crosstalk_of(_matrices(inputs, 4.0)[0])[0]
 
 
+@pytest.mark.xdist_group("comb-crosstalk-fe")  # fem: made once, on one worker
 @pytest.mark.slow  # the plane FE twice more (about 10-20 s)
 def test_the_fe_couples_less_through_a_stiffer_or_taller_spine(comb, fem):
     from tactcad.mechanics.comb_fem2d import estimate_comb_fem2d

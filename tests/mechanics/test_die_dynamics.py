@@ -54,6 +54,7 @@ def test_without_a_post_the_exact_root_is_the_bare_cantilevers(plan):
     assert dd.exact_first_resonance_Hz(bare, beam) == pytest.approx(blevins, rel=1e-6)
 
 
+@pytest.mark.xdist_group("die-calculix")  # calculix: made once, on one worker
 @pytest.mark.slow  # CalculiX, six solves
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (calculix-ccx) not installed")
 def test_the_closed_form_against_anisotropic_calculix(plan, calculix):
@@ -106,6 +107,7 @@ def test_the_tensor_of_a_turned_crystal_keeps_its_symmetries():
     assert 1 / s[0, 0] == pytest.approx(SILICON.young_modulus_MPa((1, 1, 0)), rel=1e-12)
 
 
+@pytest.mark.xdist_group("die-calculix")  # calculix: made once, on one worker
 @pytest.mark.slow  # scikit-fem and CalculiX, both rows
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (calculix-ccx) not installed")
 def test_the_dies_fem3d_agrees_with_calculix_to_one_percent(plan, calculix):

@@ -193,6 +193,7 @@ def extremes():
     return out
 
 
+@pytest.mark.xdist_group("fem2d-extremes")  # extremes: made once, on one worker
 @pytest.mark.slow
 def test_extremes_are_finite_positive_and_converged(extremes):
     for key, res in extremes.items():
@@ -203,6 +204,7 @@ def test_extremes_are_finite_positive_and_converged(extremes):
         assert discretisation < ERROR_GOAL, (key, discretisation)
 
 
+@pytest.mark.xdist_group("fem2d-extremes")  # extremes: made once, on one worker
 @pytest.mark.slow  # eight mesh-convergence studies (the module's fixture)
 def test_extremes_are_monotonic(extremes):
     K = {k: r.stiffness_N_per_mm for k, r in extremes.items()}

@@ -47,6 +47,7 @@ def die_page(tmp_path_factory) -> tuple[dict, object]:
     return _page_data(made["review"]), plan
 
 
+@pytest.mark.xdist_group("die-review-page")  # die_page: made once, on one worker
 @pytest.mark.slow  # the die's grasp and tissue coupling solved
 def test_the_die_page_carries_its_grasp_as_the_grasp_table(die_page):
     data, plan = die_page
@@ -61,6 +62,7 @@ def test_the_die_page_carries_its_grasp_as_the_grasp_table(die_page):
     assert grasp["title"].startswith("grasp force ")
 
 
+@pytest.mark.xdist_group("die-review-page")  # die_page: made once, on one worker
 @pytest.mark.slow  # the die's grasp and tissue coupling solved
 def test_the_die_page_carries_its_tissue_coupling_as_the_tissue_table(die_page):
     data, plan = die_page
@@ -70,6 +72,7 @@ def test_the_die_page_carries_its_tissue_coupling_as_the_tissue_table(die_page):
     assert f"{100 * plan.kobj_resolution_rel:.3g} % K_obj resolution" in tissue["title"]
 
 
+@pytest.mark.xdist_group("die-review-page")  # die_page: made once, on one worker
 @pytest.mark.slow  # the die's grasp and tissue coupling solved
 def test_the_die_page_carries_its_traveller_as_the_build_book(die_page):
     from tactcad.products.silicon_die.export.traveller import traveller_steps

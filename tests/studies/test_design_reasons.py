@@ -28,6 +28,10 @@ DESIGNS = {
                         "0.5", "--material", "17-4PH", "--columns", "4"],
 }
 
+#: The tests that read :func:`designed`, run on one xdist worker (``--dist loadgroup``): a
+#: module fixture is made once per worker, and each worker ran both design searches.
+ONE_WORKER = pytest.mark.xdist_group("design-reasons")
+
 #: A dimension a reason quotes: "19.953 mm", the last of "2 x 3 mm".
 _QUOTED_MM = re.compile(r"(\d+(?:\.\d+)?)\s*mm\b")
 
@@ -77,6 +81,7 @@ def _numbers(data) -> list[float]:
 
 
 @pytest.mark.slow  # two whole design searches
+@ONE_WORKER
 @pytest.mark.parametrize("name", sorted(DESIGNS))
 def test_every_dimension_a_reason_quotes_is_one_the_design_writes(designed, name):
     data, _ = designed[name]
@@ -92,6 +97,7 @@ def test_every_dimension_a_reason_quotes_is_one_the_design_writes(designed, name
 
 
 @pytest.mark.slow
+@ONE_WORKER
 @pytest.mark.parametrize("name", sorted(DESIGNS))
 def test_the_longest_arm_a_reason_quotes_is_the_written_one(designed, name):
     data, _ = designed[name]
@@ -103,6 +109,7 @@ def test_the_longest_arm_a_reason_quotes_is_the_written_one(designed, name):
 
 
 @pytest.mark.slow
+@ONE_WORKER
 @pytest.mark.parametrize("name", sorted(DESIGNS))
 def test_a_value_the_design_changed_is_not_kept_from_the_base(designed, name):
     data, printed = designed[name]
@@ -119,6 +126,7 @@ def test_a_value_the_design_changed_is_not_kept_from_the_base(designed, name):
 
 
 @pytest.mark.slow
+@ONE_WORKER
 def test_a_notch_radius_that_follows_a_thicker_web_says_so(designed):
     data, _ = designed["thick_web"]
     el = data["element"]
