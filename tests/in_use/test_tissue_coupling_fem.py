@@ -77,9 +77,12 @@ def model_antisymmetric_compliance(pitch, face, cell):
     return c[0, 0] - c[0, 1]
 
 
+#: The coarser mesh's cell h: at h and h / 2 the extrapolated block reads 2.3 % and 1.6 %
+#: below the model (at h / sqrt 2 and its half, 2.0 % and 2.1 %: the extrapolation moved
+#: 0.3 % and 0.4 %), well inside the 5 % claimed, at under half the CPU time of the finer pair.
 @pytest.mark.parametrize("pitch, face, depth, h", [
-    (4.0, (2.0, 3.0), 12.0, 0.25),      # the paper's tips and pitch
-    (1.5, (0.5, 0.5), 4.5, 0.0625),     # a grasper's small tips
+    (4.0, (2.0, 3.0), 12.0, 0.25 * 2 ** 0.5),      # the paper's tips and pitch
+    (1.5, (0.5, 0.5), 4.5, 0.0625 * 2 ** 0.5),     # a grasper's small tips
 ])
 def test_two_punches_agree_with_an_elastic_block_within_5_percent(pitch, face, depth, h):
     coarse = antisymmetric_compliance(pitch, face, depth, h)

@@ -150,7 +150,7 @@ DEFAULT_DELTA_T_K = 5.0
 DELTA_T_RANGE_K = (0.0, 100.0)
 #: Relative error of the coupled (punch) model that remains after the coupled inversion:
 #: the bound its independent check holds it to (5 %; the scikit-fem block of
-#: tests/in_use/test_tissue_coupling_fem.py measured -3.2 % at 4 mm and 1.5 mm pitch).
+#: tests/in_use/test_tissue_coupling_fem.py measures -2.3 % at 4 mm and -1.6 % at 1.5 mm pitch).
 COUPLING_MODEL_ERROR_REL = 0.05
 #: Runs of the static calibration over its Z steps (as the paper's "Calibration" did).
 CALIBRATION_REPEATS = 3
