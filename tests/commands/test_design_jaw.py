@@ -25,6 +25,7 @@ def test_the_grasper_case_writes_a_comb_and_its_scenes_that_check(tmp_path):
     d = json.loads(r.stdout)
     assert d["construction"] == "monolithic-comb"
     assert any(line.startswith("stacked:") for line in d["left_out"])
+    assert d["max_full_scale_force_N"] > 0.05  # the largest it designs at, as a stacked design's
     assert all(not c["failed"] for c in d["checks"].values()), d["checks"]
     assert {"requirements", "hard stops", "grasper"} <= set(d["checks"])
     # every cut process judged on the rows: wire EDM cuts webs far thinner than the sheet,
@@ -76,8 +77,9 @@ def full_scale_force_verdict(path: Path) -> str:
 @pytest.mark.slow  # three refusals, each bracketing its force by whole searches
 def test_a_comb_refusals_force_is_the_searchs_frontier_whatever_was_asked(tmp_path):
     """Asked 0.2 N or 0.3 N, the refusal names one force, the largest a comb carries as the
-    closed form decides it: pasted, it designs a comb whose force passes; 5 % above it, a
-    comb's force is no longer decided (or none is designed)."""
+    closed form decides it: pasted, it designs a comb whose force passes and which reports
+    that force as its largest; 1 % above it, a comb's force is no longer decided (or none
+    is designed)."""
     def asked(force, out):
         r = run_cli(*GRASPER_CASE, "--jaw", "10", "--full-scale-force", force, "--out",
                     str(tmp_path / out), "--json")
@@ -85,9 +87,10 @@ def test_a_comb_refusals_force_is_the_searchs_frontier_whatever_was_asked(tmp_pa
     named = {asked(f, "x.toml")[1]["error"]["allowed"] for f in ("0.2", "0.3")}
     assert len(named) == 1, named
     frontier = float(named.pop().split()[-1])
-    code, _ = asked(f"{frontier:g}", "at.toml")
+    code, at = asked(f"{frontier:g}", "at.toml")
     assert code == 0 and full_scale_force_verdict(tmp_path / "at.toml") == "pass"
-    code, _ = asked(f"{frontier * 1.05:.4g}", "above.toml")
+    assert at["max_full_scale_force_N"] == frontier  # the design's largest, the same rule
+    code, _ = asked(f"{frontier * 1.01:.4g}", "above.toml")
     assert code == 2 or full_scale_force_verdict(tmp_path / "above.toml") != "pass"
 
 

@@ -20,6 +20,8 @@ import psutil
 import pytest
 
 from tactcad import cli, stopping
+from tactcad.checks.export_files import export_files_group
+from tactcad.checks.groups import CheckContext
 from tactcad.export import freecad_review
 
 
@@ -67,6 +69,12 @@ def test_a_failing_freecad_leaves_the_export_whole_without_its_review_files(
         assert "review/index.html" in {f["path"] for f in man["files"]}, attempt
         assert not any(f["path"].endswith(".FCStd") for f in man["files"])
         assert not list(out.rglob("*.FCStd"))
+        assert [r["what"] for r in man["not_written"]] == ["review/*.FCStd"], attempt
+        assert "freecadcmd exited 3" in man["not_written"][0]["reason"]
+        assert all(p.endswith(".FCStd") for p in man["not_written"][0]["files"])
+        found = list(export_files_group(CheckContext(None, out, None, edited={})))
+        notes = [r for _, results in found for r in results if r.info]
+        assert len(notes) == 1 and "once FreeCAD works" in notes[0].detail, found
 
 
 @contextmanager

@@ -81,3 +81,19 @@ def test_a_designed_die_offers_no_watch_and_an_edit_shows_in_verify(tmp_path):
     assert v.returncode == 0, v.stderr
     assert f"note: [assumptions] die.columns: 5 units along the die (the default). {STALE}" \
         in v.stdout
+
+
+def test_the_die_commands_json_lists_the_reasons_that_no_longer_apply(tmp_path):
+    from conftest import run_cli
+
+    path = _written(tmp_path)
+    path.write_text(path.read_text(encoding="utf-8").replace("columns = 5", "columns = 7"),
+                    encoding="utf-8")
+    r = run_cli("die", "--design", str(path), "--out", str(tmp_path / "die"), "--json")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["stale_reasons"] == [
+        {"field": "die.columns", "reason": f"5 units along the die (the default). {STALE}"}]
+    fresh = run_cli("die", "--design", str(_written(tmp_path)), "--out", str(tmp_path / "die"),
+                    "--json")
+    assert fresh.returncode == 0, fresh.stderr
+    assert json.loads(fresh.stdout)["stale_reasons"] == []

@@ -126,6 +126,8 @@ def test_a_force_no_comb_carries_is_refused_with_a_nearest_force_that_one_does()
     nearest = float(re.search(r"--full-scale-force ([\d.]+)", text).group(1))
     assert 0.05 < nearest < 0.3
     assert search(nearest).plan is not None
+    with pytest.raises(InverseDesignError):  # the frontier within 1 %, as a stacked search's
+        search(round(nearest * 1.01, 5))
 
 
 @pytest.mark.slow  # whole design searches at three forces

@@ -65,11 +65,58 @@ def stale_results(out_dir: str | Path, stale: Sequence[str]) -> list[CheckResult
                         f"the project makes now; {again}")]
 
 
+#: The check a file the export left out notes (:func:`not_written_results`).
+NOT_WRITTEN_CHECK = "export_not_written"
+
+
+def not_written_results(out_dir: str | Path, recorded: Sequence[Mapping]) -> list[CheckResult]:
+    """One note (``info``: reported, not judged) per set of files the export left out
+    because a program failed (the manifest's ``not_written``: FreeCAD's review files),
+    naming why and the command that writes them once the program works; the files the
+    manifest lists are checked as they are.
+
+    Args:
+        out_dir: the export folder, as the user named it (shown in the hint).
+        recorded: the manifest's ``not_written`` records (``what``, ``reason``).
+
+    Returns:
+        :class:`~tactcad.checks.check_result.CheckResult` s (none when nothing was left out).
+    """
+    again = f"`tactcad export --out {shlex.quote(str(out_dir))}` writes them once FreeCAD works"
+    return [CheckResult(NOT_WRITTEN_CHECK, str(r.get("what", "?")), True,
+                        f"not written by the export ({r.get('reason', 'its program failed')}); "
+                        f"manifest.json does not list them and the files it lists are "
+                        f"consistent; {again}", info=True)
+            for r in recorded if isinstance(r, Mapping)]
+
+
+def recorded_not_written(folder: Path) -> list:
+    """The ``not_written`` records of the manifest in ``folder`` (empty when it has none,
+    or no manifest can be read).
+
+    Args:
+        folder: the export folder.
+
+    Returns:
+        The records, as the manifest holds them.
+    """
+    import json
+
+    try:
+        found = json.loads((Path(folder) / MANIFEST).read_text()).get("not_written")
+    except (OSError, ValueError, AttributeError):
+        return []
+    return found if isinstance(found, list) else []
+
+
 def export_files_group(context: CheckContext) -> Iterator[Found]:
     """``export files``: :func:`edited_results` of ``context.edited``, the files the check
-    found changed by hand before it read the folder, and :func:`stale_results` of
-    ``context.stale``; nothing when it did not look (a ``--scene`` check that wrote the
-    scenes alone, the manifest left as it was)."""
+    found changed by hand before it read the folder, :func:`stale_results` of
+    ``context.stale`` and :func:`not_written_results` of the files the export left out;
+    nothing when it did not look (a ``--scene`` check that wrote the scenes alone, the
+    manifest left as it was)."""
     if context.edited is not None:
         yield "export files", (edited_results(context.folder, context.edited)
-                               + stale_results(context.folder, context.stale))
+                               + stale_results(context.folder, context.stale)
+                               + not_written_results(context.folder,
+                                                     recorded_not_written(context.folder)))

@@ -184,7 +184,8 @@ for _group in (
                    "tactcad.checks.grasper_fit", "grasper_group", on_export=False),
         CheckGroup("export files", "every file the manifest lists as the export wrote it "
                    "(sha256): a file changed or removed by hand since fails and is left as it "
-                   "is, never written over by the check", "tactcad.checks.export_files",
+                   "is, never written over by the check; review files a failed FreeCAD left "
+                   "out noted (info)", "tactcad.checks.export_files",
                    "export_files_group", with_scenes=True),
         CheckGroup("parts", "each part's solid: valid, volume, bounding box; its STEP "
                    "file read back", _CHECKS, "part_group", suite="part"),

@@ -1778,7 +1778,26 @@ def jaw_report(result, construction: str, left: list[str], path: Path) -> dict:
         "fasteners": [{"screw_size": f.screw_size, "dowel_diameter_mm": f.dowel_diameter_mm,
                        "counts": not f.failures, "binding": list(f.failures[:1])}
                       for f in result.fasteners],
-        "processes": processes, "checks": checks}
+        "processes": processes, "checks": checks,
+        # the largest force the search designs at, as a refusal offers it (a comb's)
+        "max_full_scale_force_N": getattr(result, "max_full_scale_force_N", None)}
+
+
+def comb_largest_force_line(force_N: float) -> str:
+    """A jaw design's largest feasible full-scale force as its text says it (the stacked
+    design's words, :func:`largest_force_line`).
+
+    Args:
+        force_N: the search's frontier (N; :func:`tactcad.studies.comb_design.frontier_of`).
+
+    Returns:
+        The line.
+    """
+    from tactcad.studies.comb_design import FRONTIER_TOLERANCE_REL
+
+    return (f"largest feasible full-scale force for these stiffness targets: {force_N:g} N "
+            f"in this jaw (the search's frontier to {100 * FRONTIER_TOLERANCE_REL:g} %, "
+            f"rounded down to three digits; to paste: --full-scale-force {force_N:g})")
 
 
 def check_group_summary(results: list) -> dict:
@@ -1853,6 +1872,8 @@ def print_jaw_report(r: dict) -> None:
         first = broken[0].split("; rule:")[0].removeprefix(f"{name}: ") if broken else ""
         print(f"  rows by {name}: " + ("its rules hold" if not broken else
                                        f"{len(broken)} rules broken (first: {first})"))
+    if r.get("max_full_scale_force_N") is not None:
+        print("  " + comb_largest_force_line(r["max_full_scale_force_N"]))
     for label, c in r["checks"].items():
         print(f"  check {label}: " + counts_text({"passed": c["passed"],
                                                   "undecided": len(c["undecided"]),

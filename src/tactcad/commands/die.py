@@ -430,8 +430,8 @@ def run(args: argparse.Namespace) -> int:
             shutil.rmtree(staging, ignore_errors=True)
         held.close()
     if args.json:  # with the run's seconds and job counts, as an array's export --json
-        print(dumps({**record, "seconds": round(time.perf_counter() - started, 3), **jobs},
-                    indent=1))
+        print(dumps({**record, "seconds": round(time.perf_counter() - started, 3), **jobs,
+                     "stale_reasons": stale_rows(planned.stale_reasons)}, indent=1))
     else:  # `--quiet` says nothing on stderr; the summary is the same, as an array's
         print(render(plan, readout, room.label, dies, files, checks, counts_text(counts),
                      modes, fe, budget, mount, record["fem3d"], planned.stale_reasons))
@@ -737,6 +737,22 @@ def stale_notes(stale: Mapping[str, str]) -> list[str]:
         The lines (none where every reason applies).
     """
     return [f"note: [assumptions] {key}: {why}" for key, why in stale.items()]
+
+
+def stale_rows(stale: Mapping[str, str]) -> list[dict[str, str]]:
+    """The reasons of a die file that no longer apply as ``--json`` lists them: one
+    ``{"field", "reason"}`` each, the manifest's ``assumptions`` rows
+    (:func:`tactcad.products.silicon_die.export.die_review.assumptions_section`), the reason
+    as shown (``(written for 5; the file now states 7: the reason no longer applies)``).
+
+    Args:
+        stale: key -> the reason as shown
+            (:func:`tactcad.vocabulary.schema.stale_reasons`).
+
+    Returns:
+        The rows (empty where every reason applies).
+    """
+    return [{"field": key, "reason": why} for key, why in stale.items()]
 
 
 def resistor_line(plan, readout: dict) -> str:

@@ -595,12 +595,14 @@ def start_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
 class PendingReview:
     """Review files being written by FreeCAD in its own process. ``keep`` is False once
     FreeCAD failed (:meth:`result`): the run keeps no store entry of its review files, so
-    the next one asks FreeCAD again."""
+    the next one asks FreeCAD again; ``not_written`` is then the manifest's record of the
+    files left out (:func:`not_written_record`), None otherwise."""
 
     def __init__(self, staging: Path, assemblies: tuple[ReviewAssembly, ...],
                  log: Callable[[str], None]):
         self.staging, self.assemblies, self.log = staging, assemblies, log
         self.keep = True
+        self.not_written: dict | None = None
         self._run = None
         self._breps = None
         if not assemblies:
@@ -627,6 +629,7 @@ class PendingReview:
             result = self._run.result()
         except FreecadFailed as exc:  # the other files are good: the export goes on without
             self.keep = False
+            self.not_written = not_written_record(self.assemblies, exc)
             skipped_review_files(self.staging, self.assemblies, exc)
             return []
         finally:
@@ -648,6 +651,22 @@ class PendingReview:
         self.log(f"  wrote {len(records)} FreeCAD review files in review/ "
                  f"(FreeCAD {'.'.join(result['freecad_version'])}, colours: {result['gui']})")
         return records
+
+
+def not_written_record(assemblies: Sequence[ReviewAssembly], exc: FreecadFailed) -> dict:
+    """The manifest's record of the review files a failed FreeCAD left out of the export
+    (its ``not_written``, read by ``tactcad check``'s export files group).
+
+    Args:
+        assemblies: the review files asked for.
+        exc: FreeCAD's failure.
+
+    Returns:
+        ``{"what": "review/*.FCStd", "files": [path, ...], "reason": words}``.
+    """
+    return {"what": "review/*.FCStd",
+            "files": [review_fcstd_name(a.name) for a in assemblies],
+            "reason": f"freecadcmd exited {exc.returncode} without a result"}
 
 
 def freecad_output_file(exc: FreecadFailed) -> Path:

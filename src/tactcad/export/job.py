@@ -31,6 +31,9 @@ class Run:
     dxf_version: str | None = None  # of the shop DXF files; None: R2010 (or $TACTCAD_DXF_VERSION)
     #: jobs the run's second process made (:mod:`tactcad.export.worker`), in the order collected
     worker_made: list[str] = field(default_factory=list)
+    #: files asked for that a failed program left out, as the manifest's ``not_written``
+    #: records them (:func:`tactcad.export.freecad_review.not_written_record`)
+    not_written: list[dict] = field(default_factory=list)
     #: the scenes solved in this run by name, with their parts' solids (:meth:`scene`)
     _scenes: dict[str, tuple[Any, dict[str, Any]]] = field(default_factory=dict, repr=False)
 

@@ -74,9 +74,10 @@ def manifest_sections() -> list[ManifestSection]:
 
 #: The keys that come before the files.
 HEAD = ("design", "product", "tactcad_version", "cad_stack", "units")
-#: The keys the export run writes itself: the files, and what the export was made from
-#: (:func:`tactcad.export.jobs.export_inputs`).
-WRITTEN_BY_RUN = ("files", "inputs")
+#: The keys the export run writes itself: the files, what the export was made from
+#: (:func:`tactcad.export.jobs.export_inputs`) and the files a failed program left out
+#: (``not_written``: :func:`tactcad.export.freecad_review.not_written_record`).
+WRITTEN_BY_RUN = ("files", "inputs", "not_written")
 
 
 def manifest(plan: Plan, out_dir: Path, records: list[dict]) -> dict:

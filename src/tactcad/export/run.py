@@ -203,6 +203,8 @@ def run_jobs(run: Run, jobs: Sequence[Job], store: Store, session: SessionWorker
             # a handle whose program failed but left the run whole (FreeCAD: ``keep``
             # False) keeps no store entry, so the next run starts that program again
             finished(name, pending.result(), getattr(pending, "keep", True))
+            if getattr(pending, "not_written", None):  # the manifest says what is missing
+                run.not_written.append(pending.not_written)
         if worker is not None:
             worker.close()
     finally:
@@ -440,6 +442,8 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             man["files"] = in_earlier_order(man["files"], earlier)
             if partial is not None:  # a selection of the jobs (export --only/--part)
                 man["partial"] = partial_with_kept(partial, earlier)
+            if run.not_written:  # files a failed program left out (FreeCAD's review files)
+                man["not_written"] = run.not_written
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
             write_bytes_atomic(staging / MANIFEST, man_bytes)
             written = {r["path"] for r in records}

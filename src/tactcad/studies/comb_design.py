@@ -72,10 +72,13 @@ KM_SCALES = (1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0)
 #: The force margin a chosen comb keeps, where one can (the softest pair that keeps it is
 #: chosen; a stiffer one trades K_obj resolution for force).
 FORCE_MARGIN_REL = 0.2
-#: Bisections of a refusal's force bracket (a 1.25 x bracket to within 2.8 %: a force 5 %
-#: above the answer is refused, one below it designs); each judges again only the sheets
+#: How near a refusal's force lies under the search's frontier (relative): its bracket is
+#: bisected until its ends are this close (the stacked search's rule,
+#: :func:`tactcad.studies.design_alternatives.largest_feasible_force`: seven bisections of
+#: a 1.25 x bracket, 0.17 %), then rounded down to three digits, so the force pasted
+#: designs and one 1 % above it is refused; each bisection judges again only the sheets
 #: and K_m scales whose :class:`ForceBound` does not already fail the force.
-FRONTIER_STEPS = 3
+FRONTIER_TOLERANCE_REL = 0.002
 
 
 @dataclass(frozen=True)
@@ -167,6 +170,10 @@ class CombDesign:
     fasteners: tuple[FastenerTry, ...] = ()
     #: the candidate written (its fasteners chosen), before its name and reasons
     chosen: CombCandidate | None = None
+    #: the largest full-scale force (N) a comb of this jaw, columns and grade counts at
+    #: for these stiffness targets (:func:`largest_comb_force`, the frontier a refusal
+    #: offers), or None where not sought
+    max_full_scale_force_N: float | None = None
 
 
 @dataclass(frozen=True)
@@ -1199,13 +1206,8 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
                 rating = rated_at_a_lighter_force(base, columns, room, targets, grade,
                                                   envelope_of)
                 rated = [c.rated_force_N for c in rating if c.rated_force_N]
-            # the best-rated candidates first: the one that counts is found soonest
-            order = [(c.sheet_mm, c.km_scale) for c in
-                     sorted(rating, key=lambda c: -(c.rated_force_N or 0.0))]
-            bounds = bounds_of(rating)
-            frontier = None if not rated or jaw[0] else largest_comb_force(
-                max(rated) * 0.99, lambda force: comb_counts(
-                    base, force, columns, room, targets, grade, envelope_of, order, bounds))
+            frontier = None if not rated or jaw[0] else frontier_of(
+                rating, base, columns, room, targets, grade, envelope_of)
             other = None
             if not rated and fewer is None and not jaw[0]:
                 # nothing of this grade to paste: the other grade whose comb of these
@@ -1218,8 +1220,10 @@ def comb_for_jaw(targets: Targets, room: Any, columns: int, base: Mapping[str, A
             nearest = nearest_failure(tried)
             refused.limit = nearest.limits[0] if nearest and nearest.limits else ""
             raise refused
-        return comb_of_candidates(tried, targets, room, columns, name=name,
+        made = comb_of_candidates(tried, targets, room, columns, name=name,
                                   envelope_of=envelope_of, max_grasp_force_N=max_grasp_force_N)
+        return replace(made, max_full_scale_force_N=frontier_of(
+            tried, base, columns, room, targets, grade, envelope_of))
 
 
 def comb_candidates(targets: Targets, room: Any, columns: int, base: Mapping[str, Any], *,
@@ -2044,13 +2048,48 @@ def rated_at_a_lighter_force(base: dict, columns: int, room: Any, targets: Targe
     return []
 
 
+def frontier_of(rating: list[CombCandidate], base: dict, columns: int, room: Any,
+                targets: Targets, grade: str | None,
+                envelope_of: Callable | None) -> float | None:
+    """The largest full-scale force (N) a comb counts at for ``targets``' stiffnesses
+    (:func:`largest_comb_force`), from the best rating of ``rating``, its best-rated pairs
+    judged first and their bounds kept (:func:`comb_counts`): the force a refusal offers
+    and a design reports.
+
+    Args:
+        rating: candidates judged at one force (their ``rated_force_N``, N).
+        base, columns, room, targets, grade, envelope_of: as :func:`comb_counts`.
+
+    Returns:
+        The force (N, three digits, rounded down), or None where no candidate is rated.
+    """
+    rated = [c.rated_force_N for c in rating if c.rated_force_N]
+    if not rated:
+        return None
+    # the best-rated candidates first: the one that counts is found soonest
+    order = [(c.sheet_mm, c.km_scale) for c in
+             sorted(rating, key=lambda c: -(c.rated_force_N or 0.0))]
+    bounds = bounds_of(rating)
+    return largest_comb_force(max(rated) * 0.99, lambda force: comb_counts(
+        base, force, columns, room, targets, grade, envelope_of, order, bounds))
+
+
 def largest_comb_force(estimate_N: float, counts: Callable[[float], bool]) -> float:
     """The largest full-scale force (N, 3 significant digits, rounded down) at which a comb
     counts (``counts``), from the candidates' own rating ``estimate_N``: a candidate's
     stops and webs are set for the force asked, so its rating is only an estimate. Stepped
     down from it until one counts, then a bracket grown by
     :data:`~tactcad.studies.design_alternatives.BRACKET_STEP` until a force fails and
-    bisected, so the answer is the search's frontier whatever force was asked."""
+    bisected to within :data:`FRONTIER_TOLERANCE_REL`, so the answer is the search's
+    frontier whatever force was asked.
+
+    Args:
+        estimate_N: the candidates' best rating (N).
+        counts: whether a comb counts at a full-scale force (N).
+
+    Returns:
+        The force (N).
+    """
     from tactcad.studies.design_alternatives import BRACKET_STEP, _round_down
 
     lo = estimate_N
@@ -2061,7 +2100,7 @@ def largest_comb_force(estimate_N: float, counts: Callable[[float], bool]) -> fl
     hi = lo * 1.05
     while counts(hi):
         lo, hi = hi, hi * BRACKET_STEP
-    for _ in range(FRONTIER_STEPS):
+    while hi > lo * (1.0 + FRONTIER_TOLERANCE_REL):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if counts(mid) else (lo, mid)
     return _round_down(lo)
