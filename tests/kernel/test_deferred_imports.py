@@ -30,3 +30,23 @@ def test_a_module_already_imported_is_left_alone():
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                          check=True).stdout
     assert out.split() == ["True", "False"]
+
+
+def test_reading_where_a_deferred_module_lives_does_not_import_it(tmp_path, monkeypatch):
+    """A scan of every module's ``__file__`` (hypothesis's pytest plugin makes one as it
+    collects) reads the stand-in's without importing the module; its first use does."""
+    from tactcad.kernel import _Deferred, defer_import
+
+    name = "tactcad_deferred_probe"
+    source = tmp_path / f"{name}.py"
+    source.write_text("LOADED = True\n", encoding="utf-8")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.delitem(sys.modules, name, raising=False)
+    defer_import(name)
+    stand_in = sys.modules[name]
+    assert isinstance(stand_in, _Deferred)
+    assert getattr(stand_in, "__file__", None) == str(source)
+    assert sys.modules[name] is stand_in  # still not imported
+    assert stand_in.LOADED is True  # the first use imports it
+    assert not isinstance(sys.modules[name], _Deferred)
+    monkeypatch.delitem(sys.modules, name)

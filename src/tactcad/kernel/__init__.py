@@ -43,7 +43,8 @@ class _Deferred(ModuleType):
 
 def defer_import(name: str) -> None:
     """Put a stand-in for the top-level module ``name`` in ``sys.modules`` that imports
-    the module on its first use (an attribute read, a submodule import).
+    the module on its first use (an attribute read, a submodule import); its ``__file__``
+    is the module's own, read without importing it.
 
     Nothing happens when the module is already imported or not installed.
 
@@ -57,6 +58,9 @@ def defer_import(name: str) -> None:
         return
     stand_in = _Deferred(name)
     stand_in.__spec__ = spec  # for find_spec; an import statement reads its _initializing
+    # where it lives is no use of it: a scan of every module's file (hypothesis's pytest
+    # plugin reads each one's __file__ as it collects) leaves it unloaded
+    stand_in.__file__ = spec.origin
     sys.modules[name] = stand_in
 
 

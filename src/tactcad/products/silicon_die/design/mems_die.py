@@ -1601,17 +1601,44 @@ def _beam_pair(E: float, k_r: float, k_m: float, window: float, t: float, w: flo
 
 
 def _layer_widths(pitch_um: float, fillet_um: float = DRIE_MIN_RADIUS_UM
-                  ) -> list[tuple[float, float, list[float]]]:
+                  ) -> tuple[tuple[float, float, tuple[float, ...]], ...]:
     """(device layer, DRIE slot, beam widths) per stock layer (um): widths that leave room
     for the resistor and are at least the layer's thickness (a beam thicker than wide bends
     more easily sideways, under the tissue's shear, than out of the wafer's plane), and
-    leave the slot open between the root fillets (``fillet_um``) of neighbouring beams."""
+    leave the slot open between the root fillets (``fillet_um``) of neighbouring beams.
+
+    Args:
+        pitch_um: the beams' pitch along the die (um).
+        fillet_um: the root fillets' radius (um).
+
+    Returns:
+        One (t, slot, widths) per stock layer (um), read only: kept per process
+        (:func:`_layer_widths_of`), as a refusal's search asks it hundreds of times.
+    """
+    return _layer_widths_of(pitch_um, fillet_um, _resistor_width_um())
+
+
+@functools.lru_cache(maxsize=64)
+def _layer_widths_of(pitch_um: float, fillet_um: float, resistor_um: float
+                     ) -> tuple[tuple[float, float, tuple[float, ...]], ...]:
+    """:func:`_layer_widths` for the narrowest beam that holds the resistor,
+    ``resistor_um`` (:func:`_resistor_width_um`), a value of its key so that a changed
+    resistor is never answered from an earlier one.
+
+    Args:
+        pitch_um: the beams' pitch along the die (um).
+        fillet_um: the root fillets' radius (um).
+        resistor_um: the narrowest beam holding the resistor with its margins (um).
+
+    Returns:
+        One (t, slot, widths) per stock layer (um).
+    """
     out = []
     for t in DEVICE_LAYER_CHOICES_UM:
         slot = drie_min_width_um(t)
-        out.append((t, slot, [w for w in _widths(pitch_um - slot, max(_resistor_width_um(), t))
-                              if w <= pitch_um - slot - 2 * fillet_um]))
-    return out
+        out.append((t, slot, tuple(w for w in _widths(pitch_um - slot, max(resistor_um, t))
+                                    if w <= pitch_um - slot - 2 * fillet_um)))
+    return tuple(out)
 
 
 def _fitting_beams(E: float, k_r: float, k_m: float, window: float, pitch_um: float,
