@@ -142,3 +142,24 @@ def test_freecad_started_ahead_that_gives_no_answer_is_replaced(freecad, tmp_pat
         assert fr._Ahead.server is None and not server.alive
     finally:
         unclaimed()
+
+
+def test_a_request_is_sent_without_waiting_on_freecad(freecad, tmp_path):
+    """A request's payload (a large scene's is more than a pipe holds) goes in a file and
+    the line on FreeCAD's stdin names it, so sending returns at once even while FreeCAD
+    reads nothing (stopped here); before, the run's process waited in the write."""
+    import threading
+
+    server = fr.FreecadServer()
+    os.kill(server._proc.pid, signal.SIGSTOP)
+    sent = []
+    try:
+        payload = [{"name": "x" * 300_000, "parts": [], "groups": []}]
+        sender = threading.Thread(target=lambda: sent.append(
+            server.submit(payload, tmp_path / "result.json")), daemon=True)
+        sender.start()
+        sender.join(timeout=20.0)
+        assert sent == [1]
+    finally:
+        server.end()  # killed, stopped or not: a write still waiting fails
+    assert not server.alive

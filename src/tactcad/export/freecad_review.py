@@ -259,14 +259,20 @@ class FreecadServer:
         return self._proc.poll() is None
 
     def submit(self, payload: Any, out: Path) -> int:
-        """Send one request (the script writes its result to ``out``); its number.
+        """Send one request (the script writes its result to ``out``); its number. The
+        payload goes in a file beside ``out`` and the line names it: a line of a few
+        hundred bytes fits the pipe at once, so sending never waits on FreeCAD (a payload
+        of a large scene is more than the pipe holds).
 
         Raises:
-            OSError: FreeCAD has ended (a broken pipe).
+            OSError: FreeCAD has ended (a broken pipe), or the payload's file cannot be
+                written.
         """
         self._count += 1
-        self._proc.stdin.write(json.dumps({"in": payload, "out": str(out), "id": self._count})
-                               + "\n")
+        given = out.with_name(f"{out.stem}.request.json")
+        given.write_text(json.dumps(payload))
+        self._proc.stdin.write(json.dumps({"in_file": str(given), "out": str(out),
+                                           "id": self._count}) + "\n")
         self._proc.stdin.flush()
         return self._count
 

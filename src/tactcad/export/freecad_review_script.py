@@ -5,9 +5,10 @@
 #                   matrix}]}]}; matrices row-major 4 x 4, mm
 #   TACTCAD_FC_OUT  JSON file to write: {freecad_version, gui, files: {name:
 #                   {objects, bbox_mm} or {error}}}
-# or, with TACTCAD_FC_SERVE set, one request a line on stdin, {"in": jobs,
-# "out": file, "id": n}, each answered by the line "tactcad-fc-done <n>" written
-# to file descriptor 1 once its file is written (one FreeCAD process for many runs).
+# or, with TACTCAD_FC_SERVE set, one request a line on stdin, {"in_file": JSON
+# file of the jobs, "out": file, "id": n}, each answered by the line
+# "tactcad-fc-done <n>" written to file descriptor 1 once its file is written (one
+# FreeCAD process for many runs).
 # See tactcad/export/freecad_review.py for the document layout.
 import json
 import os
@@ -101,7 +102,9 @@ def done_line(number):
 def serve():
     for line in sys.stdin:
         request = json.loads(line)
-        write_results(request["in"], request["out"])
+        with open(request["in_file"]) as fh:
+            jobs = json.load(fh)
+        write_results(jobs, request["out"])
         # Written to the pipe itself: once the main window is shown, sys.stdout is
         # FreeCAD's console, which prints through C's stdout, block-buffered on a pipe
         # (unless PYTHONUNBUFFERED is set), and its flush() leaves that buffer as it is.
