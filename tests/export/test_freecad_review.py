@@ -4,6 +4,7 @@ process when the kept one dies."""
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 
@@ -96,3 +97,69 @@ def test_freecad_started_ahead_writes_the_bytes_of_a_new_one_and_ends_with_its_r
     left = fr._Ahead.server
     unclaimed()  # no run took it: ended
     assert fr._Ahead.server is None and not left.alive
+
+
+def test_a_kept_freecad_answers_without_pythonunbuffered(freecad, tmp_path, monkeypatch):
+    """FreeCAD's ``sys.stdout``, once its main window is shown, prints through C's stdout,
+    block-buffered on a pipe unless PYTHONUNBUFFERED is set (a lab's shell, or the
+    installed-wheel test's clean environment, does not set it): the serving script's
+    answer goes to the pipe itself, so it comes as the request is done."""
+    monkeypatch.delenv("PYTHONUNBUFFERED", raising=False)
+    server = fr.FreecadServer()
+    try:
+        number = server.submit([], tmp_path / "result.json")
+        server.wait(number, timeout_s=60.0)  # unanswered before: the line stayed in FreeCAD
+        assert json.loads((tmp_path / "result.json").read_text())["files"] == {}
+        assert server.alive
+    finally:
+        server.close()
+    assert not server.alive
+
+
+def test_freecad_started_ahead_that_gives_no_answer_is_replaced(freecad, tmp_path,
+                                                                 monkeypatch):
+    """A FreeCAD started ahead that gives no answer within ``AHEAD_ANSWER_S`` is ended; a
+    FreeCAD started for the review files writes them, the same bytes, and the run's log
+    says so in one line."""
+    fresh = _files(tmp_path / "fresh", 10.0)
+
+    def unsent(self, payload, out):  # a request FreeCAD never answers
+        self._count += 1
+        return self._count
+
+    monkeypatch.setattr(fr, "AHEAD_ANSWER_S", 1.0)
+    monkeypatch.setattr(fr.FreecadServer, "submit", unsent)
+    unclaimed = fr.start_freecad_ahead()
+    server, said = fr._Ahead.server, []
+    try:
+        fr.write_review_files(tmp_path / "ahead", _assemblies(10.0), said.append)
+        got = {p.name: p.read_bytes()
+               for p in sorted((tmp_path / "ahead" / "review").glob("*.FCStd"))}
+        assert got == fresh
+        assert [line for line in said if "no answer" in line] == [
+            "  FreeCAD started ahead gave no answer in 1 s: ended, the review files are "
+            "written by a FreeCAD started for them"]
+        assert fr._Ahead.server is None and not server.alive
+    finally:
+        unclaimed()
+
+
+def test_a_request_is_sent_without_waiting_on_freecad(freecad, tmp_path):
+    """A request's payload (a large scene's is more than a pipe holds) goes in a file and
+    the line on FreeCAD's stdin names it, so sending returns at once even while FreeCAD
+    reads nothing (stopped here); before, the run's process waited in the write."""
+    import threading
+
+    server = fr.FreecadServer()
+    os.kill(server._proc.pid, signal.SIGSTOP)
+    sent = []
+    try:
+        payload = [{"name": "x" * 300_000, "parts": [], "groups": []}]
+        sender = threading.Thread(target=lambda: sent.append(
+            server.submit(payload, tmp_path / "result.json")), daemon=True)
+        sender.start()
+        sender.join(timeout=20.0)
+        assert sent == [1]
+    finally:
+        server.end()  # killed, stopped or not: a write still waiting fails
+    assert not server.alive

@@ -259,14 +259,20 @@ class FreecadServer:
         return self._proc.poll() is None
 
     def submit(self, payload: Any, out: Path) -> int:
-        """Send one request (the script writes its result to ``out``); its number.
+        """Send one request (the script writes its result to ``out``); its number. The
+        payload goes in a file beside ``out`` and the line names it: a line of a few
+        hundred bytes fits the pipe at once, so sending never waits on FreeCAD (a payload
+        of a large scene is more than the pipe holds).
 
         Raises:
-            OSError: FreeCAD has ended (a broken pipe).
+            OSError: FreeCAD has ended (a broken pipe), or the payload's file cannot be
+                written.
         """
         self._count += 1
-        self._proc.stdin.write(json.dumps({"in": payload, "out": str(out), "id": self._count})
-                               + "\n")
+        given = out.with_name(f"{out.stem}.request.json")
+        given.write_text(json.dumps(payload))
+        self._proc.stdin.write(json.dumps({"in_file": str(given), "out": str(out),
+                                           "id": self._count}) + "\n")
         self._proc.stdin.flush()
         return self._count
 
@@ -332,26 +338,48 @@ class FreecadServer:
                 if f is not None and not f.closed]
 
 
+#: Seconds a FreeCAD started ahead (:func:`start_freecad_ahead`) is given to answer its
+#: one request once the run waits for it (about 2 s on a quiet machine, tens of seconds
+#: on a loaded one); past that it is ended and a FreeCAD started for the files writes them.
+AHEAD_ANSWER_S = 120.0
+
+
 class ServedRun:
     """A :class:`FreecadRun`'s counterpart on a :class:`FreecadServer`; when
     that FreeCAD ends before answering, the run is made again by a new one.
     ``own``: the server serves this run alone (:func:`start_freecad_ahead`) and is
-    ended with it."""
+    ended with it; one that gives no answer within :data:`AHEAD_ANSWER_S` is ended too,
+    the run made again by a new FreeCAD and ``log`` told so in one line."""
 
     def __init__(self, server: FreecadServer, payload: Any, timeout_s: float = 900.0,
-                 own: bool = False):
+                 own: bool = False, log: Callable[[str], None] = lambda line: None):
         self._server, self._payload, self._timeout = server, payload, timeout_s
-        self._own = own
+        self._own, self._log = own, log
         self._tmp = tempfile.TemporaryDirectory(prefix="tactcad-fc-")
         self._out = Path(self._tmp.name) / "result.json"
         self._number = server.submit(payload, self._out)
 
     def result(self) -> dict:
+        """The script's JSON result (see :meth:`FreecadRun.result`).
+
+        Raises:
+            FreecadFailed: the FreeCAD that made the run again wrote no result.
+            subprocess.TimeoutExpired: a kept FreeCAD (not ``own``) gave no answer
+                within the timeout, or the one that made the run again ran longer.
+        """
         try:
-            self._server.wait(self._number, self._timeout)
+            self._server.wait(self._number, AHEAD_ANSWER_S if self._own else self._timeout)
             return json.loads(self._out.read_text())
         except RuntimeError:  # the kept FreeCAD died: this run in a process of its own
             self._server.close()
+            return FreecadRun(SCRIPT, self._payload, self._timeout).result()
+        except subprocess.TimeoutExpired:
+            if not self._own:
+                self._server.close()  # busy or broken: the next run starts another
+                raise
+            self._server.end()
+            self._log(f"  FreeCAD started ahead gave no answer in {AHEAD_ANSWER_S:g} s: "
+                      "ended, the review files are written by a FreeCAD started for them")
             return FreecadRun(SCRIPT, self._payload, self._timeout).result()
         except BaseException:
             self._server.close()  # busy or broken: the next run starts another
@@ -397,10 +425,8 @@ def start_freecad_ahead() -> Callable[[], None]:
     Nothing is started when FreeCAD is not installed, one is kept already
     (:func:`keep_freecad`) or one was started ahead and not yet taken.
 
-    No export job asks for it now (:class:`tactcad.export.job.Job` ``ahead``): one export
-    from an installed wheel waited on such a FreeCAD's answer after its files were written
-    (its done line never came), not understood yet; the review files are written by a
-    FreeCAD started for them, as before.
+    The FreeCAD is given :data:`AHEAD_ANSWER_S` to answer once the run waits for it, and
+    is then ended and replaced by a FreeCAD started for the files (:class:`ServedRun`).
 
     Returns:
         A function ending that FreeCAD if no run took it (called when the run ends).
@@ -436,15 +462,15 @@ def forget_ahead_in_child() -> None:
         os.close(null)
 
 
-def _start_freecad(payload: Any):
+def _start_freecad(payload: Any, log: Callable[[str], None] = lambda line: None):
     """The review script on the FreeCAD started ahead for this run
-    (:func:`start_freecad_ahead`), else on the kept one when there is one
-    (started again when it has ended), else in a new one."""
+    (:func:`start_freecad_ahead`; ``log`` is told if it gives no answer), else on the kept
+    one when there is one (started again when it has ended), else in a new one."""
     ahead, _Ahead.server = _Ahead.server, None
     if ahead is not None:
         if ahead.alive:
             try:
-                return ServedRun(ahead, payload, own=True)
+                return ServedRun(ahead, payload, own=True, log=log)
             except OSError:  # it ended between the check and the request
                 pass
         ahead.end()
@@ -614,7 +640,7 @@ class PendingReview:
         (staging / "review").mkdir(parents=True, exist_ok=True)
         self._breps = tempfile.TemporaryDirectory(prefix="tactcad-review-")
         jobs = [_job(a, staging, Path(self._breps.name) / f"a{k}") for k, a in enumerate(assemblies)]
-        self._run = _start_freecad(jobs)
+        self._run = _start_freecad(jobs, log)
 
     def cancel(self) -> None:
         if self._run is not None:

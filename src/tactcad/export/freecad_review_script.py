@@ -5,9 +5,10 @@
 #                   matrix}]}]}; matrices row-major 4 x 4, mm
 #   TACTCAD_FC_OUT  JSON file to write: {freecad_version, gui, files: {name:
 #                   {objects, bbox_mm} or {error}}}
-# or, with TACTCAD_FC_SERVE set, one request a line on stdin, {"in": jobs,
-# "out": file, "id": n}, each answered by the line "tactcad-fc-done <n>" on
-# stdout once its file is written (one FreeCAD process for many runs).
+# or, with TACTCAD_FC_SERVE set, one request a line on stdin, {"in_file": JSON
+# file of the jobs, "out": file, "id": n}, each answered by the line
+# "tactcad-fc-done <n>" written to file descriptor 1 once its file is written (one
+# FreeCAD process for many runs).
 # See tactcad/export/freecad_review.py for the document layout.
 import json
 import os
@@ -92,12 +93,22 @@ def write_results(jobs, out):
         json.dump(results, fh, indent=1, sort_keys=True)
 
 
+def done_line(number):
+    """The answer to request ``number``: on a line of its own (a newline first, as
+    FreeCAD's own output may end mid-line), as bytes for file descriptor 1."""
+    return ("\ntactcad-fc-done %d\n" % number).encode()
+
+
 def serve():
     for line in sys.stdin:
         request = json.loads(line)
-        write_results(request["in"], request["out"])
-        sys.stdout.write("tactcad-fc-done %d\n" % request["id"])
-        sys.stdout.flush()
+        with open(request["in_file"]) as fh:
+            jobs = json.load(fh)
+        write_results(jobs, request["out"])
+        # Written to the pipe itself: once the main window is shown, sys.stdout is
+        # FreeCAD's console, which prints through C's stdout, block-buffered on a pipe
+        # (unless PYTHONUNBUFFERED is set), and its flush() leaves that buffer as it is.
+        os.write(1, done_line(request["id"]))
 
 
 if os.environ.get("TACTCAD_FC_SERVE"):

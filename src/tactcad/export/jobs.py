@@ -184,7 +184,7 @@ def scene_jobs(run: Run, names=None) -> list[Job]:
     jobs.append(Job("review:" + ",".join(names),
                     content_key("review-fcstd", [j.key for j in jobs], freecad_identity()),
                     None, tuple({s.name: s for j in jobs for s in j.needs}.values()),
-                    start=_start_review(names)))
+                    start=_start_review(names), ahead=_freecad_ahead))
     return jobs
 
 
@@ -211,6 +211,12 @@ def _scene(name: str):
     return make
 
 
+def _freecad_ahead():
+    """FreeCAD started ahead of the review files
+    (:func:`tactcad.export.freecad_review.start_freecad_ahead`)."""
+    from tactcad.export.freecad_review import start_freecad_ahead
+
+    return start_freecad_ahead()
 
 
 def _start_review(names: list[str]):
