@@ -229,6 +229,31 @@ def test_check_help_says_hand_edits_are_never_written_over(capsys):
     assert "is never written over" in text and "export files" in text
 
 
+def test_check_help_states_exports_rule_for_another_design(capsys):
+    """check's help states export's rule: another name's export is refused, one of the same
+    name made from other content (another sha256) is exported over, as export replaces it."""
+    with pytest.raises(SystemExit):
+        cli.main(["check", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "A DIR holding another design's export is refused" not in text
+    assert "a design of another name (or product)" in text and "is refused" in text
+    assert "made from other content (another sha256, e.g. another --set) is exported over, " \
+           "as export replaces it" in text
+
+
+def test_check_refuses_the_export_of_another_design_name(tmp_path, export_files_only):
+    """As export refuses it: a folder holding another name's export, before any export."""
+    from tactcad.errors import DesignError
+
+    project = tactcad.load()
+    other = tmp_path / "other"
+    fake_export(other, "f" * 64, {"bom.csv": b"part,qty\n"}, name="someone_elses_array")
+    with pytest.raises(DesignError) as err:
+        project.check(other, cache=False)
+    assert str(err.value).startswith(f"out = '{other}'")
+    assert "someone_elses_array" in str(err.value) and export_files_only == []
+
+
 def test_an_interrupt_after_a_folder_was_written_says_so(tmp_path, monkeypatch, capsys):
     """The line an interrupt ends with names what the run had written (a check's export
     before its checks), and says the previous files are left only when none was."""

@@ -822,13 +822,19 @@ def test_a_refusal_in_a_5_mm_jaw_says_each_thing_once(tmp_path):
     r = run_cli("design", "--jaw", "5", "--kr-over-km", "5", "--kobj-range", "0.2", "1.5",
                 "--full-scale-force", "0.05", "--columns", "6", "--out", "die", cwd=tmp_path)
     assert r.returncode == 2, r.stderr
-    line = r.stderr.splitlines()[0]
+    line = r.stderr.split("\n  to paste:")[0]  # the refusal, each construction on its line
     assert line.startswith("tactcad: error: --full-scale-force = 0.05: allowed at most ")
     for words in ("--full-scale-force = 0.05", "allowed at most", "silicon die",
                   "failure probability", "Weibull pair"):
         assert line.count(words) == 1, (words, line)
     assert "every beam at its rated force and every beam on its deepest stop" in line
     assert line.index("silicon die: past") < line.index("monolithic-comb: does not fit")
+    assert line.endswith(")") and "to paste:" in r.stderr
+    # one line per construction, as the refusal of the constructions that do not fit
+    said = line.splitlines()
+    assert said[0].endswith("(each against this jaw:") and len(said) == 3, said
+    assert said[1].startswith("  silicon die: past") and "monolithic-comb" not in said[1]
+    assert said[2].startswith("  monolithic-comb: does not fit")
 
 
 def test_several_constructions_refusing_one_option_name_it_and_its_value_once():
@@ -846,6 +852,8 @@ def test_several_constructions_refusing_one_option_name_it_and_its_value_once():
                                       ("monolithic-comb", "comb", high)], args))
     assert text.count("--full-scale-force = 1.0") == 1 and text.count("0.14 N") == 1
     assert "comb: the comb's stops" in text and "silicon die: allowed at most 0.03 N" in text
+    assert text.splitlines()[1:] == ["  comb: the comb's stops",
+                                     "  silicon die: allowed at most 0.03 N (the die's roots))"]
 
 
 def test_a_die_too_long_for_the_pocket_pastes_the_columns_and_the_rating_they_take(tmp_path):

@@ -83,4 +83,6 @@ def test_check_refuses_another_designs_export_before_saying_it_exports_there(tmp
 
     with pytest.raises(SystemExit):
         main(["check", "--help"])
-    assert "another design's export is refused" in " ".join(capsys.readouterr().out.split())
+    text = " ".join(capsys.readouterr().out.split())
+    assert "the export of a design of another name (or product), or files no export wrote, " \
+           "is refused" in text

@@ -141,6 +141,17 @@ def test_step_pictures_show_their_highlighted_parts(name, tmp_path):
             "samples-cast"} | rigs <= keys  # every step that places a part
     page = (book / "index.html").read_text()
     assert page.count("data:image/png;base64,") == len(pictures)
+    # a step without a picture says why, naming its parts; the others keep their numbers
+    numbered = {int(p.stem.split("_")[1]): p.stem.split("_", 2)[2] for p in pictures}
+    said = json.loads((book / "steps.json").read_text())
+    for n, st in enumerate(said, start=1):
+        if n in numbered:
+            assert numbered[n] == st["key"] and st["no_picture"] is None, (n, st["key"])
+        else:
+            assert st["no_picture"].startswith("No picture: its parts ("), st
+            assert st["no_picture"] in page, st["key"]
+    readout = next(st for st in said if st["title"] == "Connect the read-out chain")
+    assert readout["no_picture"] and "have no 3D model" in readout["no_picture"]
     # every explosion vector names an instance of the scene its step is drawn in
     _, assemblies = design_assemblies(load_project(HARDWARE / name / f"{name}.toml"))
     for st in json.loads((book / "steps.json").read_text()):
@@ -269,3 +280,22 @@ def test_a_step_picture_is_drawn_again_only_when_what_it_shows_changed(tmp_path)
                                         for s, a in zip(plan.slots, arms)))
     picture(changed, tmp_path / "store")
     assert meshed
+
+
+def test_a_step_without_a_picture_says_why_on_its_page():
+    """The read-out chain's parts have no 3D model: its page and PDF entry say so, naming
+    them, instead of leaving its picture's number out unsaid."""
+    from types import SimpleNamespace
+
+    from tactcad.export.instructions import book_html, no_picture_said
+
+    step = SimpleNamespace(key="readout", title="Connect the read-out chain",
+                           sub_assembly="read-out", scene="array", tools=(), consumables=(),
+                           notes=(), parts=(("amplifier", 1), ("daq", 1), ("cable", 2)))
+    why = no_picture_said(step, {"element", "cable"})
+    assert why == "No picture: its parts (amplifier, daq) have no 3D model."
+    assert no_picture_said(step, None) == \
+        "No picture: its parts (amplifier, daq, cable) have no 3D model."
+    page = book_html("d", [step], [], {}, {"readout": why})
+    assert '<p class="no-picture">No picture: its parts (amplifier, daq) have no 3D ' \
+           'model.</p>' in page

@@ -226,3 +226,28 @@ def test_a_shaft_no_jaw_width_passes_gets_no_paste_but_the_shaft_it_needs(comb_p
     thick = 3.0 + env[2] - room.height_mm
     assert shaft >= math.hypot(env[0] + 2 * (0.1 + 0.5), thick + 3.0) - 0.01
     assert "8 mm shaft" in why_not and "opposing_jaw_mm" in why_not
+
+
+THIN_JAW = {"width_mm": 4.0, "length_mm": 20.0, "thickness_mm": 1.8, "pin_inset_mm": 2.0,
+            "opening_angle_deg": 40.0}
+
+
+def test_a_refused_shaft_reports_no_pin_the_file_never_states():
+    """A jaw file whose shaft is refused: no second refusal of the pin its fallback class
+    would fill in (the 10 mm class's 1.5 mm pin in a 1.8 mm jaw), only the shaft's."""
+    from tactcad.errors import DesignErrors
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({"shaft_diameter_mm": "six", **THIN_JAW}, "six.toml")
+    assert [e.field for e in err.value.errors] == ["grasper_jaw.shaft_diameter_mm"]
+
+
+def test_a_pin_the_file_states_is_still_judged_with_a_refused_shaft():
+    from tactcad.errors import DesignErrors
+    from tactcad.partlib.grasper_jaw import jaw_room
+
+    with pytest.raises(DesignErrors) as err:
+        jaw_room({"shaft_diameter_mm": "six", **THIN_JAW, "pin_diameter_mm": 1.5}, "six.toml")
+    assert [e.field for e in err.value.errors] == ["grasper_jaw.shaft_diameter_mm",
+                                                   "grasper_jaw.pin_diameter_mm"]

@@ -27,7 +27,9 @@ from tactcad.store import CACHE_ALLOWED, usable_cache_folder  # noqa: F401 (re-e
 SET_EXAMPLE = "element.web_thickness_mm=0.3"
 
 
-DESIGN_HELP = ("design file (TOML); default: the one design file of the working folder (a "
+DESIGN_HELP = ("design file (TOML), a project folder or a shipped example's name (e.g. "
+               "macro_array, read where no file or folder of that name is); default: the one "
+               "design file of the working folder (a "
                "project made by tactcad new), else the shipped example macro_array (the "
                "paper's 2 x 5 array)")
 SET_HELP = ("override one value of the design file (repeatable): a dotted key and a TOML value, "
@@ -35,8 +37,8 @@ SET_HELP = ("override one value of the design file (repeatable): a dotted key an
             "checked like the file")
 
 
-DESIGN_WORD_HELP = ("the design, as --design gives it: a design file (TOML) or a project "
-                    "folder holding one")
+DESIGN_WORD_HELP = ("the design, as --design gives it: a design file (TOML), a project "
+                    "folder holding one or a shipped example's name (e.g. macro_array)")
 
 
 def add_design_arg(p: argparse.ArgumentParser, design_help: str = DESIGN_HELP,
@@ -78,6 +80,32 @@ def settle_design(args: argparse.Namespace) -> None:
         from tactcad.project_folder import design_in_folder
 
         args.design = str(design_in_folder(design))
+    elif design is not None:
+        args.design = file_or_shipped_example(design)
+
+
+def file_or_shipped_example(design: str) -> str:
+    """The design file a ``--design`` value names: the path given where a file (or anything)
+    of that name is, else the shipped example of that name (``macro_array``, a die's
+    ``grasper_jaw_5mm_mems``), so an example is named the same way in any folder and by
+    every command; a local file of that name wins.
+
+    Args:
+        design: ``--design``'s value (or the command's DESIGN word), a path or a name.
+
+    Returns:
+        The path to read: ``design`` itself, or the shipped example's design file (a
+        missing file is named by the reader).
+    """
+    from tactcad.project_folder import die_examples, examples
+
+    try:
+        if Path(design).exists():
+            return design
+    except OSError:  # a name the system cannot look up (too long): its reader names it
+        return design
+    shipped = {**examples(), **die_examples()}
+    return str(shipped[design]) if design in shipped else design
 
 
 def _is_folder(path: str) -> bool:

@@ -796,8 +796,24 @@ def constructions_refusal(refused: list[tuple[str, str, DesignError]], args: arg
     if len(order) > 1:  # one construction: its name heads its reasons, said once
         allowed += (f" ({shown}, the nearest of the {len(order)} constructions that refuse; "
                     "each one's to paste below)")
-    return DesignError(head.field, head.value, allowed, "; ".join(lines),
+    return DesignError(head.field, head.value, allowed, each_on_its_line(lines),
                        alternatives=[*pasted, *more], limit=getattr(head, "limit", ""))
+
+
+def each_on_its_line(lines: Sequence[str]) -> str:
+    """A jaw refusal's reasons, one construction's a line (as the refusal of the
+    constructions that do not fit the jaw says them): a single one as it is.
+
+    Args:
+        lines: each construction's ``name: ...`` line, in the order said.
+
+    Returns:
+        The refusal's parenthesis text: ``each against this jaw:`` and a line each, or the
+        one line.
+    """
+    if len(lines) == 1:
+        return lines[0]
+    return "each against this jaw:\n  " + "\n  ".join(lines)
 
 
 def refusal_under(construction: str, exc: DesignError, head: DesignError) -> str:

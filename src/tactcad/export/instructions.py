@@ -5,7 +5,10 @@ and :func:`tactcad.export.bom.kit_steps`): each step lists the BOM items it
 consumes with their quantities and BOM item numbers, its tools, consumables
 and notes. The page is one self-contained HTML file (no script, no external
 reference), so it opens from ``file://`` offline and prints as it shows;
-``build_book.pdf`` carries the same steps and pictures.
+``build_book.pdf`` carries the same steps and pictures. A picture is named by its
+step's number (``step_05_<key>.png``); a step whose parts have no 3D model (the
+read-out chain's amplifier, DAQ and cable) has none, and its page, PDF entry and
+``steps.json`` (``no_picture``) say so, naming those parts.
 """
 
 from __future__ import annotations
@@ -41,6 +44,23 @@ _STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;line-heigh
 def picture_name(n: int, key: str) -> str:
     """``instructions/step_<n>_<key>.png``."""
     return f"{BOOK_DIR}/step_{n:02d}_{key}.png"
+
+
+def no_picture_said(step, shown: Collection[str] | None) -> str:
+    """Why a step of the book has no picture, in words its page, PDF and ``steps.json``
+    carry (its picture's number is left unused, so the others keep their step's number).
+
+    Args:
+        step: the :class:`tactcad.assembly.build_steps.Step`.
+        shown: the parts its scene's 3D model places (None: it has no model).
+
+    Returns:
+        ``No picture: its parts (amplifier, daq, cable) have no 3D model.``, naming the
+        step's parts the model does not place.
+    """
+    unmodelled = [p for p, _ in step.parts if shown is None or p not in shown]
+    return (f"No picture: its parts ({', '.join(unmodelled or [p for p, _ in step.parts])}) "
+            "have no 3D model.")
 
 
 def placed_boxes(meshes, instances, matrices) -> np.ndarray:
@@ -172,13 +192,16 @@ def explode_record(instances, offsets: dict[int, np.ndarray]) -> dict[str, list[
             for k, v in sorted(offsets.items())}
 
 
-def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None) -> str:
+def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None,
+              unpictured: Mapping[str, str] | None = None) -> str:
     """The book's HTML text: a contents list, then one section per step.
 
     Args:
         name: the design's name.
         steps: :class:`tactcad.assembly.build_steps.Step` in build order.
         rows: the BOM rows (:class:`tactcad.export.bom.BomRow`), for item numbers and units.
+        pictures: step key -> its picture (PNG bytes).
+        unpictured: step key -> why it has no picture (:func:`no_picture_said`).
     """
     e = html.escape
     by_part = {r.part: r for r in rows}
@@ -204,6 +227,8 @@ def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None) 
             data = base64.b64encode(pictures[s.key]).decode("ascii")
             out.append(f"<img alt=\"{e(s.title)}: new parts in magenta, lifted\" width=\"800\" "
                        f"src=\"data:image/png;base64,{data}\">")
+        elif unpictured and s.key in unpictured:
+            out.append(f"<p class=\"no-picture\">{e(unpictured[s.key])}</p>")
         out.append("<p>Tools: " + e(", ".join(s.tools) or "none") + "</p>")
         if s.consumables:
             out.append("<p>Consumables: " + e(", ".join(s.consumables)) + "</p>")
@@ -212,10 +237,12 @@ def book_html(name: str, steps, rows, pictures: dict[str, bytes] | None = None) 
     return "\n".join(out) + "\n"
 
 
-def book_pdf(name: str, steps, rows, pictures: dict[str, Path], target: Path) -> None:
+def book_pdf(name: str, steps, rows, pictures: dict[str, Path], target: Path,
+             unpictured: Mapping[str, str] | None = None) -> None:
     """The book as an A4 PDF (reportlab platypus, invariant mode: the same
     steps give the same bytes): per step its title, parts table, tools,
-    notes and picture (``pictures``: step key -> PNG path)."""
+    notes and picture (``pictures``: step key -> PNG path), or why it has none
+    (``unpictured``: step key -> :func:`no_picture_said`)."""
     from xml.sax.saxutils import escape
 
     from reportlab.lib.pagesizes import A4
@@ -236,6 +263,8 @@ def book_pdf(name: str, steps, rows, pictures: dict[str, Path], target: Path) ->
         flow += [Paragraph(escape("- " + t), styles["Normal"]) for t in s.notes]
         if s.key in pictures:
             flow.append(Image(str(pictures[s.key]), width=160 * mm, height=100 * mm))
+        elif unpictured and s.key in unpictured:
+            flow.append(Paragraph(escape(unpictured[s.key]), styles["Normal"]))
         flow.append(Spacer(1, 6 * mm))
     SimpleDocTemplate(str(target), pagesize=A4, title=f"Build book: {name}",
                       invariant=1).build(flow)
@@ -267,6 +296,7 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
     pictures: dict[str, bytes] = {}
     picture_paths: dict[str, Path] = {}
     explode: dict[str, dict[str, list[float]]] = {}
+    unpictured: dict[str, str] = {}  # a step without a picture says why, its number kept
     records = []
     if mesh is not None:
         order: dict[str, int] = {}
@@ -277,10 +307,12 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
         for n, s in enumerate(steps):
             model = _step_model(s.scene, array, scene_of, models)
             if model is None:
+                unpictured[s.key] = no_picture_said(s, None)
                 continue
             instances, specs, axes = model
             new = set(s.highlight) & {i.part for i in instances}
             if not new:
+                unpictured[s.key] = no_picture_said(s, {i.part for i in instances})
                 continue
             earlier = {i.part for i in instances if order.get(i.part, -1) < n}
             path = picture_name(n + 1, s.key)
@@ -292,11 +324,13 @@ def write_book(project, staging: Path, log: Callable[[str], None], assembled,
             records.append({"path": path, "part": "instructions", "kind": "instructions-png",
                             "step": s.key})
     write_bytes_atomic(staging / BOOK_PAGE,
-                       book_html(project.plan.name, steps, rows, pictures).encode("utf-8"))
+                       book_html(project.plan.name, steps, rows, pictures,
+                                 unpictured).encode("utf-8"))
     write_bytes_atomic(staging / BOOK_DATA, json.dumps(
-        [{**s.as_dict(), "explode": explode.get(s.key, {})} for s in steps],
+        [{**s.as_dict(), "explode": explode.get(s.key, {}),
+          "no_picture": unpictured.get(s.key)} for s in steps],
         indent=1).encode("utf-8"))
-    book_pdf(project.plan.name, steps, rows, picture_paths, staging / BOOK_PDF)
+    book_pdf(project.plan.name, steps, rows, picture_paths, staging / BOOK_PDF, unpictured)
     records.append({"path": BOOK_PDF, "part": "instructions", "kind": "instructions-pdf",
                     "steps": len(steps)})
     log(f"  wrote {BOOK_PAGE} and {BOOK_PDF} ({len(steps)} steps, {len(pictures)} pictures)")

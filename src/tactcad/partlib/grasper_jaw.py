@@ -759,7 +759,25 @@ def _jaw_read(p: Problems, table: Mapping[str, Any], file: str,
         except DesignErrors:
             j = GrasperJawSection()
             unread.update(table)
-    return with_class_defaults(j), unread
+    return with_class_defaults(j), unread | class_filled_unread(table, unread)
+
+
+def class_filled_unread(table: Mapping[str, Any], unread: set[str]) -> set[str]:
+    """The sizes a jaw table leaves to its class (:data:`CLASS_DEFAULTS_MM`) that are not read
+    from it either: when its class is not known (``shaft_diameter_mm`` refused or left out
+    and no class stated, or ``shaft_class_mm`` refused), the class the table falls back to would fill them, so no rule
+    judges them (a refusal of a pin the file never states would follow from the other).
+
+    Args:
+        table: the jaw table as the file states it. unread: the keys refused or left out.
+
+    Returns:
+        The keys to read as not stated (empty when the class is known).
+    """
+    known = "shaft_class_mm" in table and "shaft_class_mm" not in unread  # stated: it wins
+    if known or not {"shaft_diameter_mm", "shaft_class_mm"} & unread:
+        return set()
+    return {k for k in CLASS_DEFAULTS_MM[next(iter(CLASS_DEFAULTS_MM))] if k not in table}
 
 
 def _widest_band_mm(outline) -> float:
