@@ -348,13 +348,14 @@ def full_scale_judgement(plan, model: str, records) -> dict:
         ``{"full_scale_force_N", "reason", "element_force_limit_N", "binding_limit",
         "binding_element", "margin_rel", "element_force_limit_error_rel", "verdict", "met",
         "model"}`` (N; relative): ``verdict`` one of ``pass``, ``fail``, ``undecided``, the
-        judgement; ``met`` the nominal comparison alone (limit >= rating, its error aside),
-        as verify's ``pass`` and the manifest's ``full_scale_force.met``.
+        judgement; ``met`` True only when ``verdict`` is ``pass`` (False when undecided or
+        failing: :func:`tactcad.studies.verification.passed_flag`), as verify's ``pass`` and
+        the manifest's ``full_scale_force.met``.
     """
     from tactcad.mechanics.element_strength import ElementStress
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, limit_k_error, plan_limits
     from tactcad.mechanics.verdicts import verdict
-    from tactcad.studies.verification import requirements_of
+    from tactcad.studies.verification import passed_flag, requirements_of
 
     req = requirements_of(plan)
     stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,
@@ -373,7 +374,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
             "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
             "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
             "margin_rel": margin, "element_force_limit_error_rel": b.error_estimate_rel,
-            "verdict": said, "met": b.force_N >= rated, "model": model}
+            "verdict": said, "met": passed_flag(said), "model": model}
 
 
 #: Largest further tip mass (mg) a modal record takes (``--tip-mass-mg``).
