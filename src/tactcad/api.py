@@ -672,7 +672,7 @@ class Project:
         return budget_record(self.plan, model, force_N, delta_T_K, calibration=read)[0]
 
     @keyword_errors
-    def strength(self, model: str = "closed-form") -> dict:
+    def strength(self, model: str = "auto") -> dict:
         """Every distinct element's peak stress per newton, yield-limited force and its
         stress, gauge strain and tip deflection at the rated full-scale force, and the
         rating judged against every element force limit, as ``tactcad strength --json``
@@ -680,14 +680,20 @@ class Project:
         verify's ``full_scale_force_N`` row).
 
         Args:
-            model: ladder level (``closed-form``, ``beam``, ``fem2d``, ``fem3d``).
+            model: ``auto`` (the default, as the command's: the closed form, and for a
+                rating it leaves undecided the level verify's climb decides it at,
+                :func:`tactcad.studies.project_reports.strength_auto`) or a ladder level
+                (``closed-form``, ``beam``, ``fem2d``, ``fem3d``).
 
         Raises:
-            UnknownModelError: ``model`` is not a ladder level.
+            UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
             DesignError: the material has no yield strength.
         """
-        from tactcad.studies.project_reports import strength_record
+        from tactcad.assembly.inventory import array_envelope_mm
+        from tactcad.studies.project_reports import AUTO, strength_auto, strength_record
 
+        if model == AUTO:
+            return strength_auto(self.plan, array_envelope_mm(self.plan))[0]
         return strength_record(self.plan, model)[0]
 
     @keyword_errors

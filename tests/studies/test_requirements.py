@@ -53,10 +53,13 @@ def test_a_design_without_the_section_gets_derived_requirements_not_the_papers()
     assert req.kobj_range_N_per_mm != PAPER_SAMPLES
     assert req.full_scale_force_N != 2.0
     # the derived full-scale force is the binding limit rounded down: the matrix passes
-    # (but for the paper's 2.5 V excitation, above TN-502's guidance: undecided, not failed)
+    # (but for the paper's 2.5 V excitation, above TN-502's guidance: undecided, not failed);
+    # a row met inside its error is undecided, its pass flag false (only a PASS is a pass)
     rows = verification_matrix(plan)
-    assert all(r["pass"] for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT
-               and r["verdict"] != "info")  # info: the design's own figure, not judged
+    judged = [r for r in rows if r["requirement"] != GRID_POWER_REQUIREMENT
+              and r["verdict"] != "info"]  # info: the design's own figure, not judged
+    assert all(r["verdict"] in ("pass", "undecided") for r in judged)
+    assert all(r["pass"] is (r["verdict"] == "pass") for r in judged)
     assert matrix_passed(rows)
 
 

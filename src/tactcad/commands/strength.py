@@ -5,6 +5,7 @@ element of a design.
 Examples::
 
     tactcad strength
+    tactcad strength --model closed-form
     tactcad strength --model fem2d --json
 """
 
@@ -18,6 +19,7 @@ from tactcad.mechanics.ladder import levels_help, models
 from tactcad.commands import (add_cache_args, add_design_arg, add_output_args, plan_from_args,
                               product_view, progress_from_args)
 from tactcad.commands.options import keep_option_defaults
+from tactcad.studies.project_reports import AUTO
 
 
 
@@ -35,9 +37,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "warns where the rated force exceeds an element's yield-limited force, "
                     "the fatigue strength or the gauge's fatigue or maximum strain. Units: "
                     "MPa, N, mm, microstrain.")
-    p.add_argument("--model", choices=models(), default="closed-form",
+    p.add_argument("--model", choices=(AUTO, *models()), default=AUTO,
                    help=f"ladder level ({levels_help()} per distinct element; FEM stress "
-                        "meshes are finer than the stiffness ones; default %(default)s)")
+                        "meshes are finer than the stiffness ones), or auto: the closed form, "
+                        "and where it leaves the rated force undecided the level verify "
+                        "--model auto decides it at (its solves read back from the result "
+                        "store); default %(default)s")
     add_design_arg(p)
     add_cache_args(p)
     add_output_args(p, "print a JSON list of records")
@@ -52,7 +57,8 @@ def run(args: argparse.Namespace) -> int:
     shown = product_view("strength", args)  # a silicon die's design: each row's beam root
     if shown is not None:
         return shown
-    from tactcad.studies.project_reports import strength_record
+    from tactcad.assembly.inventory import array_envelope_mm
+    from tactcad.studies.project_reports import strength_auto, strength_record
     from tactcad.studies.reference_loads import reference_load_of
 
     plan = plan_from_args(args)
@@ -62,17 +68,18 @@ def run(args: argparse.Namespace) -> int:
 
             raise DesignError("--table1", True, "only for a design whose requirements.source "
                               "cites the measurements (the paper's design)")
-        return _run_table1(plan, args.model, args.json)
+        return _run_table1(plan, "closed-form" if args.model == AUTO else args.model, args.json)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
-    record, records = strength_record(plan, args.model, progress)
+    record, records = (strength_auto(plan, array_envelope_mm(plan), progress)
+                       if args.model == AUTO else strength_record(plan, args.model, progress))
     judged = record["requirement"]
     code = 1 if judged["verdict"] == "fail" else 0  # as verify: an undecided rating exits 0
     if args.json:
         print(json.dumps(record, indent=2, allow_nan=False))
         return code
     m, s = plan.material, plan.strength
-    print(f"Strength, model {args.model}: {m.grade or m.name}, yield {m.yield_strength_MPa:g} MPa, "
+    print(f"Strength, model {model_words(args.model, judged)}: {m.grade or m.name}, yield {m.yield_strength_MPa:g} MPa, "
           f"fatigue {_fmt_opt(m.fatigue_strength_MPa)} MPa, safety factor {s.safety_factor:g}, "
           f"gauge {s.gauge.name} (max {s.gauge.max_strain * 1e6:.0f}, fatigue "
           f"{s.gauge.fatigue_strain * 1e6:.0f} microstrain)")
@@ -101,6 +108,22 @@ def run(args: argparse.Namespace) -> int:
     return code
 
 
+def model_words(asked: str, judged: dict) -> str:
+    """The level a report's figures are at: the one asked, or under ``auto`` the level that
+    decided the rating (or, still undecided, the most accurate one tried).
+
+    Args:
+        asked: ``--model``. judged: the report's ``requirement`` record.
+
+    Returns:
+        A phrase: ``closed-form``, ``fem3d (auto: the closed form left the rated force
+        undecided)``.
+    """
+    if asked != AUTO or judged["model"] == "closed-form":
+        return judged["model"]
+    return f"{judged['model']} (auto: the closed form left the rated force undecided)"
+
+
 #: How ``strength`` words each verdict on the rated full-scale force.
 RATING_WORDS = {"pass": "met", "fail": "NOT met", "undecided": "UNDECIDED"}
 
@@ -123,7 +146,9 @@ def rating_text(judged: dict) -> str:
             f"(error {100 * judged['element_force_limit_error_rel']:.2f} %, {judged['model']})")
     if judged["verdict"] != "undecided":
         return line
-    return f"{line}: the margin lies inside the error; {climb_hint(judged['model'])}"
+    # under auto, the ladder was climbed: the hint is the highest level tried's
+    tried = judged.get("levels_tried") or [judged["model"]]
+    return f"{line}: the margin lies inside the error; {climb_hint(tried[-1])}"
 
 
 def climb_hint(model: str) -> str:

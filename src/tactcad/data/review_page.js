@@ -488,11 +488,30 @@ function showData(value) {  // any JSON: a list of records as a table, an object
 // the matrix's columns as tactcad verify prints them (the page's data comes with sorted keys)
 const VERIFY_COLUMNS = ['requirement', 'verdict', 'target', 'predicted', 'margin', 'binds', 'model'];
 
+// a row the closed form leaves undecided and verify's climb decides (review_page.UNDECIDED_CLIMBS)
+const UNDECIDED_CLIMBS = 'UNDECIDED at closed form; decided by `tactcad verify`';
+
+function decidedRow(row, checks) {  // the row with the verdict `tactcad check` climbed to, if any
+  const found = checks.find((r) => r.check === 'requirement' && r.subject === row.requirement);
+  if (!found || row.verdict !== UNDECIDED_CLIMBS) return row;
+  const said = found.status || (found.passed ? 'pass' : 'fail');
+  const level = (/\(error [^,)]*, ([\w-]+)\)/.exec(found.detail || '') || [])[1] || 'the ladder';
+  const verdict = said === 'undecided' ? `UNDECIDED up to ${level} (tactcad check)`
+    : `${said.toUpperCase()} at ${level} (tactcad check); undecided at closed form`;
+  return { ...row, verdict };
+}
+
+function checksOfThisDesign() {  // review/checks.js's results when they are this design's
+  const c = window.TACTCAD_CHECKS;
+  return c && c.design_sha256 === DATA.manifest.design.sha256 ? c.checks || [] : [];
+}
+
 function showVerification() {  // the manifest's verification matrix, when the export has one
   const v = DATA.manifest.verification;
   $('verification').hidden = $('nav-verification').hidden = v === undefined || v === null;
   const key = v ? Object.keys(v).find((k) => k.startsWith('verification matrix')) : undefined;
-  const rows = key ? v[key] : [];
+  const checks = checksOfThisDesign();
+  const rows = (key ? v[key] : []).map((r) => decidedRow(r, checks));
   if (key && rows.length && rows.every((r) => 'verdict' in r)) {  // the matrix first, in order
     const rest = Object.fromEntries(Object.entries(v).filter(([k]) => k !== key));
     $('verification-body').replaceChildren(el('h3', key), table(VERIFY_COLUMNS, rows), showData(rest));

@@ -367,12 +367,37 @@ def verification_row(r: dict) -> dict:
 
     err = r.get("error_estimate_rel")
     shown = {**r, "verdict": _verdict(r)}  # a row reported, not judged: no target, no margin
-    return {"requirement": r["requirement"], "verdict": shown["verdict"].upper(),
+    return {"requirement": r["requirement"], "verdict": verdict_cell(shown),
             "target": target_text(shown),
             "predicted": predicted_text(r)
             + ("" if err is None else f" \u00b1 {100 * err:.2g} %"),
             "margin": margin_text(shown),
             "binds": binding_text(r), "model": r.get("model", "")}
+
+
+#: The verdict cell's words for a row the closed form leaves undecided and a higher ladder
+#: level computes anew: verify's climb decides it (the page's script puts the decided verdict
+#: of ``tactcad check`` there once ``review/checks.js`` holds it).
+UNDECIDED_CLIMBS = "UNDECIDED at closed form; decided by `tactcad verify`"
+
+
+def verdict_cell(record: dict) -> str:
+    """A verification row's verdict as the page's table shows it: the verdict in capitals,
+    and for a row undecided at the closed form that a higher level computes anew (not
+    ``level_fixed``), :data:`UNDECIDED_CLIMBS`: the manifest's matrix is the closed form's,
+    the verdict that counts the level ``tactcad verify`` (and ``tactcad check``) climbs to.
+
+    Args:
+        record: a verification record with its verdict (``info`` for a row not judged).
+
+    Returns:
+        The cell's text.
+    """
+    said = record["verdict"]
+    if said == "undecided" and record.get("model") == "closed-form" \
+            and not record.get("level_fixed", False):
+        return UNDECIDED_CLIMBS
+    return said.upper()
 
 
 def page_html(contents: ReviewContents, import_map: str) -> str:

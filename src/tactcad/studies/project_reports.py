@@ -335,6 +335,65 @@ def strength_record(plan, model: str = "closed-form",
              "requirement": full_scale_judgement(plan, model, records)}, records)
 
 
+#: ``model`` of :func:`strength_auto`: the rating judged as ``verify --model auto`` judges it.
+AUTO = "auto"
+
+
+def strength_auto(plan, envelope_mm: Sequence[float],
+                  progress: Callable[[str], None] | None = None) -> tuple[dict, list]:
+    """:func:`strength_record` at the level that decides the rated full-scale force, as
+    ``tactcad verify --model auto`` decides it: the closed form, and when it leaves the rating
+    undecided, verify's own climb (:func:`tactcad.studies.verification.verification_auto`,
+    its solves kept in the active store and read back from it), then the record at the level
+    its ``full_scale_force_N`` row names (the one that decided it, or, still undecided, the
+    most accurate one tried).
+
+    Args:
+        plan: the design's plan.
+        envelope_mm: the array's envelope (mm, :func:`tactcad.assembly.inventory.
+            array_envelope_mm`), for verify's footprint row.
+        progress: called with each step's line (None: silent).
+
+    Returns:
+        As :func:`strength_record`, the ``requirement`` with ``decided_by`` (the level that
+        decided the rating, None when no level did) and ``levels_tried`` (cheapest first).
+
+    Raises:
+        DesignError: the material has no yield strength.
+    """
+    record, records = strength_record(plan, "closed-form", progress)
+    tried = ["closed-form"]
+    if record["requirement"]["verdict"] == "undecided":
+        row = climbed_rating_row(plan, envelope_mm, progress)
+        level, tried = row["model"], list(row.get("levels_tried") or [row["model"]])
+        if level != "closed-form":
+            record, records = strength_record(plan, level, progress)
+    said = record["requirement"]["verdict"]
+    record["requirement"].update(decided_by=None if said == "undecided"
+                                 else record["requirement"]["model"], levels_tried=tried)
+    return record, records
+
+
+def climbed_rating_row(plan, envelope_mm: Sequence[float],
+                       progress: Callable[[str], None] | None = None) -> dict:
+    """The ``full_scale_force_N`` row of verify's climb
+    (:func:`tactcad.studies.verification.verification_auto`, with every element's stress).
+
+    Args:
+        plan: the design's plan. envelope_mm: the array's envelope (mm).
+        progress: each step's line (None: silent).
+
+    Returns:
+        The verification record (``model``, ``verdict``, ``decided_by``, ``levels_tried``).
+    """
+    from tactcad.studies.strength_studies import element_stress
+    from tactcad.studies.verification import requirements_of, verification_auto
+
+    records, _ = verification_auto(plan, progress, requirements_of(plan), stress=element_stress,
+                                   envelope_mm=envelope_mm)
+    return next(r for r in records if r["requirement"] == "full_scale_force_N")
+
+
 def full_scale_judgement(plan, model: str, records) -> dict:
     """The design's rated full-scale force against every element force limit at ``model``
     (the stress figures of ``records`` reused; ``element_force_limit_N`` is the
@@ -348,13 +407,14 @@ def full_scale_judgement(plan, model: str, records) -> dict:
         ``{"full_scale_force_N", "reason", "element_force_limit_N", "binding_limit",
         "binding_element", "margin_rel", "element_force_limit_error_rel", "verdict", "met",
         "model"}`` (N; relative): ``verdict`` one of ``pass``, ``fail``, ``undecided``, the
-        judgement; ``met`` the nominal comparison alone (limit >= rating, its error aside),
-        as verify's ``pass`` and the manifest's ``full_scale_force.met``.
+        judgement; ``met`` True only when ``verdict`` is ``pass`` (False when undecided or
+        failing: :func:`tactcad.studies.verification.passed_flag`), as verify's ``pass`` and
+        the manifest's ``full_scale_force.met``.
     """
     from tactcad.mechanics.element_strength import ElementStress
     from tactcad.mechanics.limits import LIMIT_WORDS, binding, limit_k_error, plan_limits
     from tactcad.mechanics.verdicts import verdict
-    from tactcad.studies.verification import requirements_of
+    from tactcad.studies.verification import passed_flag, requirements_of
 
     req = requirements_of(plan)
     stresses = {r.part_name: ElementStress(model, r.stress_MPa_per_N, r.stress_error_rel,
@@ -373,7 +433,7 @@ def full_scale_judgement(plan, model: str, records) -> dict:
             "reason": req.reasons["full_scale_force_N"], "element_force_limit_N": b.force_N,
             "binding_limit": LIMIT_WORDS[b.limit], "binding_element": b.element,
             "margin_rel": margin, "element_force_limit_error_rel": b.error_estimate_rel,
-            "verdict": said, "met": b.force_N >= rated, "model": model}
+            "verdict": said, "met": passed_flag(said), "model": model}
 
 
 #: Largest further tip mass (mg) a modal record takes (``--tip-mass-mg``).

@@ -1255,7 +1255,24 @@ def verification_matrix(plan: Plan, model: str = "closed-form",
         if "verdict" not in r:  # a record with a rule of its own states its verdict
             r["verdict"] = verdict(r["margin_rel"], r["error_estimate_rel"],
                                    r.get("allowed_margin_rel", 0.0), r["pass"])
+        r["pass"] = passed_flag(r["verdict"])
     return out
+
+
+def passed_flag(said: str) -> bool | None:
+    """The ``pass`` (and ``met``) key of a judged record: True only for the verdict ``pass``,
+    False for ``fail`` and ``undecided`` (a margin inside the level's error is not a pass),
+    None for a row reported, not judged (verdict ``info``). One rule for every output with
+    such a key (verify's records, the manifest's ``closed_form_matrix`` and
+    ``full_scale_force.met``, ``strength --json``'s ``met``); ``verdict`` says which.
+
+    Args:
+        said: the record's verdict (:data:`tactcad.mechanics.verdicts.VERDICTS` or ``info``).
+
+    Returns:
+        True, False or None.
+    """
+    return None if said == INFO else said == "pass"
 
 
 #: The verification row of the gauge grid's power density (TN-502).
@@ -2241,7 +2258,7 @@ def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) 
                                  "largest_N": force["predicted"],
                                  "binding_limit": force["binding_words"],
                                  "binding_element": force["binding_element"],
-                                 "met": force["pass"]}}
+                                 "met": passed_flag(force["verdict"])}}
 
 
 #: The tissue model's relative error on a bias: its agreement with the independent
