@@ -219,6 +219,12 @@ class FreecadFailedWarning(UserWarning):
     files (the message names FreeCAD's exit and the file holding its output)."""
 
 
+class FreecadAheadWarning(UserWarning):
+    """The FreeCAD started ahead of an export's kernel import gave no answer in time: it
+    was ended and the review files were written by a FreeCAD started for them (the message
+    names the wait)."""
+
+
 class HandEditedWarning(UserWarning):
     """Files of an earlier export changed by hand since it was written, which a partial
     export keeps as they are but no longer lists as the export's (named in the message)."""

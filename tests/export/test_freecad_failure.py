@@ -77,6 +77,93 @@ def test_a_failing_freecad_leaves_the_export_whole_without_its_review_files(
         assert len(notes) == 1 and "once FreeCAD works" in notes[0].detail, found
 
 
+def _export(*args: str) -> None:
+    assert cli.main(["export", "--quiet", *args]) == 0
+
+
+@pytest.mark.slow  # two exports of the review files
+def test_a_failing_freecad_over_an_export_keeps_its_review_files_and_says_so(
+        tmp_path, monkeypatch, capsys, freecad):
+    """``--only review`` with a failing FreeCAD over an export holding the review files:
+    the earlier files are kept and listed (``partial.kept``), no ``not_written`` record
+    names them, and the warning says they are kept (before: a record naming the 5 files
+    present and a warning saying the manifest did not list them)."""
+    out = tmp_path / "ex"
+    _export("--no-cache", "--out", str(out), "--only", "review")
+    before = json.loads((out / "manifest.json").read_text())
+    reviews = sorted(f["path"] for f in before["files"] if f["path"].endswith(".FCStd"))
+    assert reviews
+    fake = fake_freecadcmd(tmp_path / "bin", "exit 3")
+    monkeypatch.setenv("PATH", f"{fake}:{os.environ['PATH']}")
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # FreeCAD's output is kept there
+    capsys.readouterr()
+    assert cli.main(["export", "--no-cache", "--out", str(out), "--only", "review"]) == 0
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if "FCStd" in line]
+    assert len(lines) == 1 and "freecadcmd exited 3" in lines[0], err
+    assert "does not list the review files" not in lines[0]
+    assert ("the earlier export's review files are kept as they were, listed in "
+            "manifest.json under partial.kept") in lines[0]
+    man = json.loads((out / "manifest.json").read_text())
+    assert sorted(f["path"] for f in man["files"] if f["path"].endswith(".FCStd")) == reviews
+    assert set(reviews) <= set(man["partial"]["kept"])
+    assert all((out / p).is_file() for p in reviews)
+    assert "not_written" not in man
+
+
+@pytest.mark.slow  # an export of the review files
+def test_a_partial_export_without_the_review_job_carries_the_not_written_record(
+        tmp_path, monkeypatch):
+    """After an export whose FreeCAD failed, a partial export that does not run the review
+    job keeps the ``not_written`` record while the files are still absent (before: dropped)."""
+    out, path = tmp_path / "ex", os.environ["PATH"]
+    fake = fake_freecadcmd(tmp_path / "bin", "exit 3")
+    monkeypatch.setenv("PATH", f"{fake}:{path}")
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # FreeCAD's output is kept there
+    _export("--no-cache", "--out", str(out), "--only", "review")
+    recorded = json.loads((out / "manifest.json").read_text())["not_written"]
+    assert recorded and recorded[0]["files"]
+    monkeypatch.setenv("PATH", path)  # FreeCAD works again; the review job does not run
+    _export("--no-cache", "--out", str(out), "--only", "bom")
+    man = json.loads((out / "manifest.json").read_text())
+    assert man.get("not_written") == recorded
+    assert not any((out / p).exists() for p in recorded[0]["files"])
+
+
+#: ``tactcad`` with FreeCAD's wait patched: a process of its own, whose kernel is not loaded
+#: yet, so the export starts FreeCAD ahead (it does not once the kernel is loaded here).
+PATCHED_WAIT_CLI = ("import sys\nfrom tactcad.export import freecad_review\n"
+                    "freecad_review.AHEAD_ANSWER_S = float(sys.argv[1])\n"
+                    "from tactcad import cli\nsys.exit(cli.main(sys.argv[2:]))")
+
+
+@pytest.mark.slow  # an export of the review files
+def test_a_freecad_started_ahead_without_answer_is_one_warning_line(tmp_path, freecad):
+    """The FreeCAD started ahead of the kernel import (its serving mode) that gives no answer
+    in ``AHEAD_ANSWER_S`` is ended and the review files are written by a FreeCAD started
+    for them; ``tactcad export`` says so in one ``tactcad: warning:`` line (before, the
+    line went to the run's log, which the command discards)."""
+    import sys
+
+    real = Path(freecad).resolve()
+    fake = fake_freecadcmd(tmp_path / "bin", 'if [ -n "$TACTCAD_FC_SERVE" ]; then exec sleep 60; '
+                                             f'fi\nexec "{real}" "$@"')
+    env = dict(os.environ, PATH=f"{fake}:{os.environ['PATH']}")
+    env.pop("TACTCAD_WORKERS", None)  # the export forks, and so starts FreeCAD ahead
+    out = tmp_path / "ex"
+    done = subprocess.run([sys.executable, "-c", PATCHED_WAIT_CLI, "2", "export", "--no-cache",
+                           "--out", str(out), "--only", "review"], env=env, cwd=tmp_path,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    said = [line for line in done.stderr.splitlines() if "no answer" in line]
+    assert said == ["tactcad: warning: the FreeCAD started ahead of the export gave no answer "
+                    "in 2 s: it was ended, and the review files were written by a FreeCAD "
+                    "started for them"], done.stderr
+    man = json.loads((out / "manifest.json").read_text())
+    assert [f["path"] for f in man["files"] if f["path"].endswith(".FCStd")]
+    assert "not_written" not in man
+
+
 @contextmanager
 def _stopped_as_held(stops: list[int] | None = None):
     """A :func:`tactcad.stopping.stop_signals_held` during which Ctrl-C came: raised

@@ -10,6 +10,7 @@ import signal
 
 import pytest
 
+from tactcad.errors import FreecadAheadWarning
 from tactcad.export import freecad_review as fr
 
 pytestmark = pytest.mark.slow
@@ -119,8 +120,8 @@ def test_a_kept_freecad_answers_without_pythonunbuffered(freecad, tmp_path, monk
 def test_freecad_started_ahead_that_gives_no_answer_is_replaced(freecad, tmp_path,
                                                                  monkeypatch):
     """A FreeCAD started ahead that gives no answer within ``AHEAD_ANSWER_S`` is ended; a
-    FreeCAD started for the review files writes them, the same bytes, and the run's log
-    says so in one line."""
+    FreeCAD started for the review files writes them, the same bytes, and one warning
+    (the command's ``tactcad: warning:`` line) says so."""
     fresh = _files(tmp_path / "fresh", 10.0)
 
     def unsent(self, payload, out):  # a request FreeCAD never answers
@@ -132,13 +133,15 @@ def test_freecad_started_ahead_that_gives_no_answer_is_replaced(freecad, tmp_pat
     unclaimed = fr.start_freecad_ahead()
     server, said = fr._Ahead.server, []
     try:
-        fr.write_review_files(tmp_path / "ahead", _assemblies(10.0), said.append)
+        with pytest.warns(FreecadAheadWarning) as caught:
+            fr.write_review_files(tmp_path / "ahead", _assemblies(10.0), said.append)
         got = {p.name: p.read_bytes()
                for p in sorted((tmp_path / "ahead" / "review").glob("*.FCStd"))}
         assert got == fresh
-        assert [line for line in said if "no answer" in line] == [
-            "  FreeCAD started ahead gave no answer in 1 s: ended, the review files are "
-            "written by a FreeCAD started for them"]
+        assert [str(w.message) for w in caught if w.category is FreecadAheadWarning] == [
+            "the FreeCAD started ahead of the export gave no answer in 1 s: it was ended, "
+            "and the review files were written by a FreeCAD started for them"]
+        assert not [line for line in said if "no answer" in line]
         assert fr._Ahead.server is None and not server.alive
     finally:
         unclaimed()

@@ -104,11 +104,14 @@ class EarlierExport:
         changed: the paths of those files changed by hand since (sha256 not as listed): kept
             in the folder as the lab's files, no longer listed as the export's.
         order: every path the earlier manifest lists, in its order.
+        not_written: the earlier manifest's ``not_written`` records (files a failed
+            program left out, :func:`tactcad.export.freecad_review.not_written_record`).
     """
 
     kept: tuple[dict, ...] = ()
     changed: tuple[str, ...] = ()
     order: tuple[str, ...] = ()
+    not_written: tuple[dict, ...] = ()
 
 
 def kept_by_partial_export(out: Path, name: str, design_sha256: str,
@@ -159,7 +162,24 @@ def kept_by_partial_export(out: Path, name: str, design_sha256: str,
             kept.append(f)
         elif how == "changed":
             changed.append(f["path"])
-    return EarlierExport(tuple(kept), tuple(changed), tuple(f["path"] for f in listed))
+    return EarlierExport(tuple(kept), tuple(changed), tuple(f["path"] for f in listed),
+                         manifest_not_written(manifest))
+
+
+def manifest_not_written(manifest: dict) -> tuple[dict, ...]:
+    """A manifest's ``not_written`` records, each with its ``files`` a list of paths.
+
+    Args:
+        manifest: the manifest as read.
+
+    Returns:
+        The well-formed records (none when it has none).
+    """
+    found = manifest.get("not_written")
+    if not isinstance(found, list):
+        return ()
+    return tuple(dict(r) for r in found
+                 if isinstance(r, dict) and isinstance(r.get("files"), list))
 
 
 def files_of_same_design(out: Path, design_sha256: str) -> tuple[dict, ...]:

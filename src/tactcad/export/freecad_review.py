@@ -349,12 +349,13 @@ class ServedRun:
     that FreeCAD ends before answering, the run is made again by a new one.
     ``own``: the server serves this run alone (:func:`start_freecad_ahead`) and is
     ended with it; one that gives no answer within :data:`AHEAD_ANSWER_S` is ended too,
-    the run made again by a new FreeCAD and ``log`` told so in one line."""
+    the run made again by a new FreeCAD and the user told so in one warning
+    (:func:`warn_ahead_replaced`)."""
 
     def __init__(self, server: FreecadServer, payload: Any, timeout_s: float = 900.0,
-                 own: bool = False, log: Callable[[str], None] = lambda line: None):
+                 own: bool = False):
         self._server, self._payload, self._timeout = server, payload, timeout_s
-        self._own, self._log = own, log
+        self._own = own
         self._tmp = tempfile.TemporaryDirectory(prefix="tactcad-fc-")
         self._out = Path(self._tmp.name) / "result.json"
         self._number = server.submit(payload, self._out)
@@ -378,8 +379,7 @@ class ServedRun:
                 self._server.close()  # busy or broken: the next run starts another
                 raise
             self._server.end()
-            self._log(f"  FreeCAD started ahead gave no answer in {AHEAD_ANSWER_S:g} s: "
-                      "ended, the review files are written by a FreeCAD started for them")
+            warn_ahead_replaced(AHEAD_ANSWER_S)
             return FreecadRun(SCRIPT, self._payload, self._timeout).result()
         except BaseException:
             self._server.close()  # busy or broken: the next run starts another
@@ -393,6 +393,33 @@ class ServedRun:
         if self._out.parent.exists():  # not waited for: FreeCAD may be writing still
             self._server.close()
             self._tmp.cleanup()
+
+
+def ahead_replaced_text(waited_s: float) -> str:
+    """The warning's words when the FreeCAD started ahead gave no answer in time.
+
+    Args:
+        waited_s: the seconds it was given (:data:`AHEAD_ANSWER_S`).
+
+    Returns:
+        One line naming the wait, the FreeCAD ended and the one that wrote the files.
+    """
+    return (f"the FreeCAD started ahead of the export gave no answer in {waited_s:g} s: it "
+            "was ended, and the review files were written by a FreeCAD started for them")
+
+
+def warn_ahead_replaced(waited_s: float) -> None:
+    """One :class:`~tactcad.errors.FreecadAheadWarning` (``tactcad: warning: ...`` on the
+    command's stderr, :mod:`tactcad.commands.notices`) saying so (:func:`ahead_replaced_text`).
+
+    Args:
+        waited_s: the seconds the FreeCAD started ahead was given.
+    """
+    import warnings
+
+    from tactcad.errors import FreecadAheadWarning
+
+    warnings.warn(ahead_replaced_text(waited_s), FreecadAheadWarning, stacklevel=2)
 
 
 class _Kept:
@@ -462,15 +489,15 @@ def forget_ahead_in_child() -> None:
         os.close(null)
 
 
-def _start_freecad(payload: Any, log: Callable[[str], None] = lambda line: None):
+def _start_freecad(payload: Any):
     """The review script on the FreeCAD started ahead for this run
-    (:func:`start_freecad_ahead`; ``log`` is told if it gives no answer), else on the kept
+    (:func:`start_freecad_ahead`; a warning says so if it gives no answer), else on the kept
     one when there is one (started again when it has ended), else in a new one."""
     ahead, _Ahead.server = _Ahead.server, None
     if ahead is not None:
         if ahead.alive:
             try:
-                return ServedRun(ahead, payload, own=True, log=log)
+                return ServedRun(ahead, payload, own=True)
             except OSError:  # it ended between the check and the request
                 pass
         ahead.end()
@@ -627,6 +654,9 @@ class PendingReview:
     def __init__(self, staging: Path, assemblies: tuple[ReviewAssembly, ...],
                  log: Callable[[str], None]):
         self.staging, self.assemblies, self.log = staging, assemblies, log
+        # the earlier export's files a partial export put in place first: kept if FreeCAD fails
+        self.earlier = [review_fcstd_name(a.name) for a in assemblies
+                        if (staging / review_fcstd_name(a.name)).is_file()]
         self.keep = True
         self.not_written: dict | None = None
         self._run = None
@@ -640,7 +670,7 @@ class PendingReview:
         (staging / "review").mkdir(parents=True, exist_ok=True)
         self._breps = tempfile.TemporaryDirectory(prefix="tactcad-review-")
         jobs = [_job(a, staging, Path(self._breps.name) / f"a{k}") for k, a in enumerate(assemblies)]
-        self._run = _start_freecad(jobs, log)
+        self._run = _start_freecad(jobs)
 
     def cancel(self) -> None:
         if self._run is not None:
@@ -656,7 +686,7 @@ class PendingReview:
         except FreecadFailed as exc:  # the other files are good: the export goes on without
             self.keep = False
             self.not_written = not_written_record(self.assemblies, exc)
-            skipped_review_files(self.staging, self.assemblies, exc)
+            skipped_review_files(self.staging, self.assemblies, exc, self.earlier)
             return []
         finally:
             self.cancel()
@@ -716,16 +746,19 @@ def freecad_output_file(exc: FreecadFailed) -> Path:
 
 
 def skipped_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
-                         exc: FreecadFailed) -> None:
+                         exc: FreecadFailed, earlier: Sequence[str] = ()) -> None:
     """An export without its FreeCAD review files, FreeCAD having failed: any it wrote
     before it failed removed from ``staging`` (a set whole or none; ``review/`` too when
-    that leaves it empty), its output kept (:func:`freecad_output_file`) and one
+    that leaves it empty; a partial export puts the earlier export's back, which it keeps),
+    its output kept (:func:`freecad_output_file`) and one
     :class:`~tactcad.errors.FreecadFailedWarning` naming its exit and that file.
 
     Args:
         staging: the run's staging folder.
         assemblies: the review files asked for.
         exc: FreeCAD's failure.
+        earlier: the earlier export's review files a partial export keeps (in ``staging``
+            before FreeCAD ran), which the manifest lists as kept.
     """
     import warnings
 
@@ -743,9 +776,26 @@ def skipped_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],
         seen = f"its output could not be kept ({err.strerror}), it ends: " + " | ".join(
             exc.output.strip().splitlines()[-3:])
     warnings.warn(f"review/*.FCStd not written: freecadcmd exited {exc.returncode} without a "
-                  f"result ({seen}); the export's other files are written and manifest.json "
-                  "does not list the review files; the next export runs FreeCAD again",
-                  FreecadFailedWarning, stacklevel=2)
+                  f"result ({seen}); the export's other files are written and "
+                  f"{listed_review_words(len(assemblies), len(earlier))}; the next export "
+                  "runs FreeCAD again", FreecadFailedWarning, stacklevel=2)
+
+
+def listed_review_words(asked: int, kept: int) -> str:
+    """What the manifest holds of the review files after FreeCAD failed, in words.
+
+    Args:
+        asked: the review files asked for.
+        kept: those of them the earlier export wrote, which a partial export keeps.
+
+    Returns:
+        The words, e.g. ``manifest.json does not list the review files``.
+    """
+    if not kept:
+        return "manifest.json does not list the review files"
+    which = "the" if kept == asked else f"{kept} of the {asked}"
+    return (f"{which} earlier export's review files are kept as they were, listed in "
+            "manifest.json under partial.kept")
 
 
 def write_review_files(staging: Path, assemblies: Sequence[ReviewAssembly],

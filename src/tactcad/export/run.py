@@ -442,8 +442,10 @@ def _write_locked(out: Path, out_dir: Path, t0: float, jobs_of: Callable[[Run], 
             man["files"] = in_earlier_order(man["files"], earlier)
             if partial is not None:  # a selection of the jobs (export --only/--part)
                 man["partial"] = partial_with_kept(partial, earlier)
-            if run.not_written:  # files a failed program left out (FreeCAD's review files)
-                man["not_written"] = run.not_written
+            left_out = not_written_now(run.not_written, earlier,
+                                       {f["path"] for f in man["files"]})
+            if left_out:  # files a failed program left out (FreeCAD's review files)
+                man["not_written"] = left_out
             man_bytes = (json.dumps(man, indent=2, sort_keys=False) + "\n").encode()
             write_bytes_atomic(staging / MANIFEST, man_bytes)
             written = {r["path"] for r in records}
@@ -519,6 +521,31 @@ def in_earlier_order(files: list[dict], earlier: EarlierExport) -> list[dict]:
     place = {path: k for k, path in enumerate(earlier.order)}
     records = list(files) + list(earlier.kept)
     return sorted(records, key=lambda f: place.get(f["path"], len(place)))
+
+
+def not_written_now(now: Sequence[dict], earlier: EarlierExport,
+                    listed: set[str]) -> list[dict]:
+    """The manifest's ``not_written``: the records of files a failed program left out in
+    this run, and the earlier export's records (a partial export keeps them as it keeps
+    the earlier files) of a kind this run did not ask for again; each naming only the
+    files still absent (the manifest does not list them), none left when all are there.
+
+    Args:
+        now: this run's records (:func:`tactcad.export.freecad_review.not_written_record`).
+        earlier: the earlier export a partial export keeps (empty for a full export).
+        listed: the paths the new manifest lists (written now or kept of the earlier).
+
+    Returns:
+        The records, each with its absent files; an empty list when none is absent.
+    """
+    asked = {r.get("what") for r in now}
+    carried = [r for r in earlier.not_written if r.get("what") not in asked]
+    out = []
+    for record in list(now) + carried:
+        absent = [p for p in record.get("files", []) if p not in listed]
+        if absent:
+            out.append({**record, "files": absent})
+    return out
 
 
 def partial_with_kept(partial: dict, earlier: EarlierExport) -> dict:
