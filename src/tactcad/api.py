@@ -672,7 +672,8 @@ class Project:
         return budget_record(self.plan, model, force_N, delta_T_K, calibration=read)[0]
 
     @keyword_errors
-    def strength(self, model: str = "auto") -> dict:
+    def strength(self, model: str = "closed-form",
+                 cache: str | Path | None | bool = True) -> dict:
         """Every distinct element's peak stress per newton, yield-limited force and its
         stress, gauge strain and tip deflection at the rated full-scale force, and the
         rating judged against every element force limit, as ``tactcad strength --json``
@@ -680,10 +681,11 @@ class Project:
         verify's ``full_scale_force_N`` row).
 
         Args:
-            model: ``auto`` (the default, as the command's: the closed form, and for a
-                rating it leaves undecided the level verify's climb decides it at,
-                :func:`tactcad.studies.project_reports.strength_auto`) or a ladder level
-                (``closed-form``, ``beam``, ``fem2d``, ``fem3d``).
+            model: a ladder level (``closed-form``, the default as the command's, ``beam``,
+                ``fem2d``, ``fem3d``) or ``auto`` (the closed form, and for a rating it leaves
+                undecided the level verify's climb decides it at,
+                :func:`tactcad.studies.project_reports.strength_auto`).
+            cache: the store that keeps FEM results under ``auto``, as for :meth:`verify`.
 
         Raises:
             UnknownModelError: ``model`` is neither ``auto`` nor a ladder level.
@@ -692,8 +694,11 @@ class Project:
         from tactcad.assembly.inventory import array_envelope_mm
         from tactcad.studies.project_reports import AUTO, strength_auto, strength_record
 
+        from tactcad.store import keeping_results
+
         if model == AUTO:
-            return strength_auto(self.plan, array_envelope_mm(self.plan))[0]
+            with keeping_results(_store(cache)):
+                return strength_auto(self.plan, array_envelope_mm(self.plan))[0]
         return strength_record(self.plan, model)[0]
 
     @keyword_errors

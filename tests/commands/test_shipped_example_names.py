@@ -47,3 +47,17 @@ def test_an_unknown_name_is_still_named_as_a_missing_file(tmp_path, monkeypatch,
     monkeypatch.chdir(tmp_path)
     assert main(["evaluate", "--design", "no_such_design"]) == 2
     assert "design file = 'no_such_design'" in capsys.readouterr().err
+
+
+def test_a_local_toml_of_that_name_wins_over_the_example(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "macro_array.toml").write_text("[element]\n", encoding="utf-8")
+    assert parse_checked(["verify", "macro_array"]).design == "macro_array.toml"
+
+
+def test_a_misspelt_example_name_is_refused_naming_the_examples(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["verify", "macro_arrayy", "--model", "closed-form"]) == 2
+    err = capsys.readouterr().err
+    assert "macro_arrayy" in err and "did you mean macro_array?" in err
+    assert "Traceback" not in err

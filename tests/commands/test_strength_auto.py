@@ -63,16 +63,19 @@ def test_a_rating_the_closed_form_decides_climbs_nowhere(monkeypatch):
                       "requirement": record["requirement"]}
 
 
-def test_the_command_decides_by_default_and_closed_form_stays_as_it_was(monkeypatch, capsys):
+def test_the_command_decides_under_auto_and_closed_form_stays_the_default(monkeypatch, capsys):
     asked = []
     _climbed_to("beam", monkeypatch, asked)
-    assert main(["strength", "--design", str(EXAMPLE), *SETS, "--model", "closed-form"]) == 0
+    assert main(["strength", "--design", str(EXAMPLE), *SETS]) == 0
     closed = capsys.readouterr().out
     assert asked == [] and closed.startswith("Strength, model closed-form:")
-    assert "UNDECIDED" in closed and "tactcad strength --model fem3d" in closed
-    assert main(["strength", "--design", str(EXAMPLE), *SETS]) == 0
-    auto = capsys.readouterr().out
+    assert "UNDECIDED" in closed and "tactcad strength --model auto" in closed
+    assert main(["strength", "--design", str(EXAMPLE), *SETS, "--model", "auto"]) == 0
+    said = capsys.readouterr()
+    auto = said.out
     assert len(asked) == 1
+    # the climb is announced before it starts, on stderr, with its cost and the way out
+    assert "leaves the rated force undecided" in said.err and "--model closed-form" in said.err
     assert auto.startswith("Strength, model beam (auto: the closed form left the rated force "
                            "undecided):")
     rating = next(line for line in auto.splitlines() if line.startswith("rated full-scale "
@@ -82,7 +85,7 @@ def test_the_command_decides_by_default_and_closed_form_stays_as_it_was(monkeypa
 
 @pytest.mark.parametrize("tried, words", [(["closed-form", "beam", "fem2d", "fem3d"],
                                            "fem3d is the ladder's top level"),
-                                          (None, "tactcad strength --model fem3d")])
+                                          (None, "tactcad strength --model auto")])
 def test_an_undecided_hint_names_the_highest_level_tried(tried, words):
     from tactcad.commands.strength import rating_text
 

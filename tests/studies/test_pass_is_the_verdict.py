@@ -41,6 +41,9 @@ def test_an_undecided_rating_is_not_met_in_any_output():
                  if r["requirement"] == "full_scale_force_N")
     assert force["verdict"] == "undecided" and force["pass"] is False
     assert record["full_scale_force"]["met"] is False
+    # and it says why: undecided at the closed form, not failed
+    assert record["full_scale_force"]["verdict"] == "undecided"
+    assert record["full_scale_force"]["model"] == "closed-form"
 
 
 def test_every_judged_row_says_its_verdict_in_its_flag():

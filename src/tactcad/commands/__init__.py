@@ -102,10 +102,38 @@ def file_or_shipped_example(design: str) -> str:
     try:
         if Path(design).exists():
             return design
+        if Path(design).suffix == "" and Path(f"{design}.toml").is_file():
+            return f"{design}.toml"  # the local file of that name wins over the example
     except OSError:  # a name the system cannot look up (too long): its reader names it
         return design
     shipped = {**examples(), **die_examples()}
-    return str(shipped[design]) if design in shipped else design
+    if design in shipped:
+        return str(shipped[design])
+    refuse_a_misspelt_example(design, sorted(shipped))
+    return design
+
+
+def refuse_a_misspelt_example(design: str, names: list[str]) -> None:
+    """Refuse a bare word (no folder, no suffix) close to a shipped example's name, naming
+    the examples; anything else is left to the design file's reader to name.
+
+    Args:
+        design: ``--design``'s value, naming no file. names: the shipped examples' names.
+
+    Raises:
+        DesignError: ``design`` is a bare word close to an example's name.
+    """
+    import difflib
+
+    from tactcad.errors import DesignError
+
+    if "/" in design or Path(design).suffix:
+        return
+    close = difflib.get_close_matches(design, names, n=1, cutoff=0.75)
+    if close:
+        raise DesignError("design file", design,
+                          f"a readable TOML file, or a shipped example's name (did you mean "
+                          f"{close[0]}? the examples: {', '.join(names)})")
 
 
 def _is_folder(path: str) -> bool:

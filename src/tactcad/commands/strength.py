@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 
 from tactcad.design.requirements_section import cites_paper
 from tactcad.mechanics.ladder import levels_help, models
@@ -37,12 +38,13 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "warns where the rated force exceeds an element's yield-limited force, "
                     "the fatigue strength or the gauge's fatigue or maximum strain. Units: "
                     "MPa, N, mm, microstrain.")
-    p.add_argument("--model", choices=(AUTO, *models()), default=AUTO,
+    p.add_argument("--model", choices=(AUTO, *models()), default="closed-form",
                    help=f"ladder level ({levels_help()} per distinct element; FEM stress "
                         "meshes are finer than the stiffness ones), or auto: the closed form, "
                         "and where it leaves the rated force undecided the level verify "
-                        "--model auto decides it at (its solves read back from the result "
-                        "store); default %(default)s")
+                        "--model auto decides it at, every distinct element then at that "
+                        "level (fem3d: about 10 s an element; solves kept in and read back "
+                        "from the result store); default %(default)s")
     add_design_arg(p)
     add_cache_args(p)
     add_output_args(p, "print a JSON list of records")
@@ -71,7 +73,8 @@ def run(args: argparse.Namespace) -> int:
         return _run_table1(plan, "closed-form" if args.model == AUTO else args.model, args.json)
     report = progress_from_args(args)
     progress = (lambda s: report(f"  ... {s}"))
-    record, records = (strength_auto(plan, array_envelope_mm(plan), progress)
+    record, records = (strength_auto(plan, array_envelope_mm(plan), progress,
+                                     notice=None if args.quiet else _say_climbing)
                        if args.model == AUTO else strength_record(plan, args.model, progress))
     judged = record["requirement"]
     code = 1 if judged["verdict"] == "fail" else 0  # as verify: an undecided rating exits 0
@@ -106,6 +109,12 @@ def run(args: argparse.Namespace) -> int:
                 seen.add(key)
                 print(f"warning: element {r.element} ({r.part_name}): {w}")
     return code
+
+
+def _say_climbing(line: str) -> None:
+    """Print the line ``strength --model auto`` says before it climbs, on stderr (so
+    ``--json`` stays one JSON document)."""
+    print(f"tactcad: {line}", file=sys.stderr, flush=True)
 
 
 def model_words(asked: str, judged: dict) -> str:
@@ -166,6 +175,9 @@ def climb_hint(model: str) -> str:
     if not above:
         return (f"{model} is the ladder's top level: widen the margin (a lower rating, a "
                 "stronger element) or measure the element")
+    if model == "closed-form":
+        return ("a more accurate level decides it: tactcad strength --model auto (as verify "
+                f"climbs) or --model {above[-1]}")
     return f"a more accurate level decides it: tactcad strength --model {above[-1]}"
 
 

@@ -340,7 +340,8 @@ AUTO = "auto"
 
 
 def strength_auto(plan, envelope_mm: Sequence[float],
-                  progress: Callable[[str], None] | None = None) -> tuple[dict, list]:
+                  progress: Callable[[str], None] | None = None,
+                  notice: Callable[[str], None] | None = None) -> tuple[dict, list]:
     """:func:`strength_record` at the level that decides the rated full-scale force, as
     ``tactcad verify --model auto`` decides it: the closed form, and when it leaves the rating
     undecided, verify's own climb (:func:`tactcad.studies.verification.verification_auto`,
@@ -353,6 +354,8 @@ def strength_auto(plan, envelope_mm: Sequence[float],
         envelope_mm: the array's envelope (mm, :func:`tactcad.assembly.inventory.
             array_envelope_mm`), for verify's footprint row.
         progress: called with each step's line (None: silent).
+        notice: called once with a line saying the closed form left the rating undecided
+            and what the climb costs, before it starts (None: silent).
 
     Returns:
         As :func:`strength_record`, the ``requirement`` with ``decided_by`` (the level that
@@ -364,6 +367,8 @@ def strength_auto(plan, envelope_mm: Sequence[float],
     record, records = strength_record(plan, "closed-form", progress)
     tried = ["closed-form"]
     if record["requirement"]["verdict"] == "undecided":
+        if notice is not None:
+            notice(climb_notice(record["requirement"], len(records)))
         row = climbed_rating_row(plan, envelope_mm, progress)
         level, tried = row["model"], list(row.get("levels_tried") or [row["model"]])
         if level != "closed-form":
@@ -372,6 +377,25 @@ def strength_auto(plan, envelope_mm: Sequence[float],
     record["requirement"].update(decided_by=None if said == "undecided"
                                  else record["requirement"]["model"], levels_tried=tried)
     return record, records
+
+
+def climb_notice(judged: Mapping[str, Any], elements: int) -> str:
+    """What ``strength --model auto`` says before it climbs the ladder.
+
+    Args:
+        judged: the closed form's ``requirement`` record (``margin_rel``,
+            ``element_force_limit_error_rel``). elements: distinct elements judged.
+
+    Returns:
+        One line: the margin inside the error, the climb and its rough cost (fem3d about
+        10 s a distinct element on two cores, less where the result store holds it).
+    """
+    return (f"the closed form leaves the rated force undecided (margin "
+            f"{100 * judged['margin_rel']:+.1f} % inside its error "
+            f"{100 * judged['element_force_limit_error_rel']:.1f} %): climbing as verify "
+            f"does, up to fem3d for {elements} distinct element{'s' * (elements != 1)} "
+            f"(about 10 s each, less where the result store holds them); --model "
+            f"closed-form for the closed form alone")
 
 
 def climbed_rating_row(plan, envelope_mm: Sequence[float],

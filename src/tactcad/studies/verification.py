@@ -2258,7 +2258,9 @@ def requirements_record(plan: Plan, envelope_mm: Sequence[float] | None = None) 
                                  "largest_N": force["predicted"],
                                  "binding_limit": force["binding_words"],
                                  "binding_element": force["binding_element"],
-                                 "met": passed_flag(force["verdict"])}}
+                                 "met": passed_flag(force["verdict"]),
+                                 # met alone cannot tell undecided from failed
+                                 "verdict": force["verdict"], "model": force["model"]}}
 
 
 #: The tissue model's relative error on a bias: its agreement with the independent
