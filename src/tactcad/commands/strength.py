@@ -47,7 +47,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "from the result store); default %(default)s")
     add_design_arg(p)
     add_cache_args(p)
-    add_output_args(p, "print a JSON list of records")
+    add_output_args(p, "print one JSON object: the elements' records and the requirement's")
     p.add_argument("--table1", action="store_true",
                    help="the paper's design: compare each element's yield-limited force with "
                         "its measured max support force (design web and as-built web)")

@@ -57,7 +57,8 @@ import numpy as np
 
 #: The die's one crosstalk level (``tactcad crosstalk --model`` on a die's design), and what
 #: it costs: its 3D FE through the handle and the die attach.
-CROSSTALK_LEVEL, CROSSTALK_COST = "attach-fem3d", "about a minute"
+CROSSTALK_LEVEL, CROSSTALK_COST = "attach-fem3d", ("about a minute and a half for 5 "
+                                                  "columns, longer with more columns")
 
 #: An assumed attach's modulus is taken this factor either way for the error estimate.
 ATTACH_MODULUS_SPAN = 2.0
